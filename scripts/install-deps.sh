@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# Installs CovContact's build, test and post-processing dependencies from Debian's packages.
+# Safe to run twice: apt-get skips what is already installed. Needs root (or sudo).
+set -euo pipefail
+
+packages=(
+  build-essential cmake ninja-build pkg-config git
+  libeigen3-dev libsuitesparse-dev libhdf5-dev libgmsh-dev gmsh
+  libmuparser-dev libcli11-dev libfmt-dev libgtest-dev libgmock-dev
+  python3-h5py python3-matplotlib python3-numpy
+  paraview xvfb hdf5-tools
+)
+
+sudo_cmd=()
+if [ "$(id -u)" -ne 0 ]; then sudo_cmd=(sudo); fi
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-deps: all ${#packages[@]} packages already installed"
+  exit 0
+fi
+
+echo "install-deps: installing ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+"${sudo_cmd[@]}" apt-get update -qq
+"${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"

@@ -1,0 +1,2 @@
+// placeholder main: replaced by the covcontact command
+int main() { return 0; }

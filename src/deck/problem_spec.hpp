@@ -1,0 +1,190 @@
+// ProblemSpec: the validated, plain-data result of parsing a deck. Owns nothing but values; every
+// item carries the SourceLocation it came from so that later stages (model building, mesh checks)
+// can still report "file:line: what was expected". Downstream code never sees deck text.
+#pragma once
+
+#include <array>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "common/source_location.hpp"
+
+namespace cc {
+
+using Vec3 = std::array<double, 3>;
+
+// A scalar function of time (and, for prescribed displacements, of the reference position x,y,z).
+// Either a muParser expression or a piecewise-linear table (constant beyond its ends).
+struct FunctionSpec {
+  enum class Kind { Expression, Table };
+  Kind kind = Kind::Expression;
+  std::string expression;                        // Kind::Expression, variables t, x, y, z
+  std::vector<std::pair<double, double>> table;  // Kind::Table, (t, value), t strictly increasing
+  SourceLocation where;
+};
+
+struct MeshSpec {
+  std::string path;                          // absolute, resolved against the deck's directory
+  std::map<std::string, double> parameters;  // .geo only: gmsh -setnumber NAME VALUE
+  SourceLocation where;
+};
+
+struct MaterialSpec {
+  enum class Model { StVenantKirchhoff, NeoHooke };
+  std::string name;
+  Model model = Model::StVenantKirchhoff;
+  double youngsModulus = 0;
+  double poissonRatio = 0;
+  SourceLocation where;
+};
+
+struct ElementBlockSpec {
+  enum class Type { Hex8, SolidShell8, SolidShell18 };
+  std::string group;     // gmsh physical volume group name
+  Type type = Type::Hex8;
+  std::string material;  // MaterialSpec::name
+  // Solid-shells: thickness direction. -1 = from the node ordering (the mesh's extrusion
+  // direction, local zeta), 0/1/2 = the element's local axis closest to global x/y/z.
+  int thicknessAxis = -1;
+  int easParameters = 1;  // SolidShell8/18: number of EAS thickness-strain parameters
+  SourceLocation where;
+};
+
+struct FixSpec {
+  std::string set;
+  std::array<bool, 3> components{false, false, false};  // ux, uy, uz
+  SourceLocation where;
+};
+
+// Prescribed displacement components on a node set; unset components stay free.
+struct PrescribeSpec {
+  std::string set;
+  std::array<std::optional<FunctionSpec>, 3> components;
+  SourceLocation where;
+};
+
+// Nodal forces on a node set. `total` splits the value equally over the set's nodes.
+struct LoadSpec {
+  std::string set;
+  std::array<std::optional<FunctionSpec>, 3> components;
+  bool total = false;
+  SourceLocation where;
+};
+
+// A rigid analytic surface (the "slave" of an STAS pair in the paper's terminology, section 6.3.1).
+struct RigidSurfaceSpec {
+  enum class Shape { Plane, Cylinder, ParabolicCylinder, Sphere };
+  std::string name;
+  Shape shape = Shape::Plane;
+  Vec3 origin{0, 0, 0};  // plane point / cylinder axis point / parabola vertex / sphere centre
+  Vec3 normal{0, 0, 1};  // plane normal (towards the deformable body); parabola opening direction
+  Vec3 axis{0, 1, 0};    // cylinder and parabolic cylinder axis (generatrix direction)
+  double radius = 0;     // cylinder, sphere
+  double curvature = 0;  // parabolic cylinder: z = c x^2 in its local frame (c = curvature)
+  std::array<std::optional<FunctionSpec>, 3> motion;  // rigid translation u(t)
+  SourceLocation where;
+};
+
+// Which parts of the paper's tangent (Tables 1 and 2) are assembled. The residual never
+// depends on these flags.
+struct TangentParts {
+  bool normalMain = true;          // eq. (83)
+  bool normalRotational = true;    // eq. (83a)
+  bool normalCurvature = true;     // eq. (83b)
+  bool stickMain = true;           // eq. (100)
+  bool stickRotational = true;     // eq. (100a)
+  bool stickCurvature = true;      // eq. (100b)
+  bool slideConstitutive = true;   // eqs. (107), (107a), (107b)
+  bool slideRotational = true;     // eq. (107c)
+  bool slideCurvature = true;      // eq. (107d)
+  bool slideUnsymmetricCurvature = true;  // eq. (107e)
+};
+
+struct ContactSpec {
+  enum class Kind { SegmentToSegment, NodeToSegment, SegmentToAnalytical };
+  // Paper: the parts of Tables 1-2. Exact: linearization of the discrete algorithm itself.
+  enum class TangentMode { Paper, Exact };
+  std::string name;        // pair name used in output (default "pair<k>")
+  Kind kind = Kind::SegmentToSegment;
+  std::string master;      // face set (STS/NTS); for STAS the deformable body's face set
+  std::string slave;       // face set (STS), node or face set (NTS); rigid surface name (STAS)
+  double penaltyNormal = 0;      // eps_N
+  double penaltyTangential = 0;  // eps_T
+  double friction = 0;           // mu >= 0; mu = 0 computes no tangential terms
+  int integrationPoints = 2;     // Gauss points per direction (STS, STAS)
+  TangentMode tangentMode = TangentMode::Paper;
+  TangentParts parts;
+  SourceLocation where;
+};
+
+struct NewtonSpec {
+  enum class Criterion { Energy, Residual, Both, Either };
+  int maxIterations = 30;
+  double residualTolerance = 1e-10;  // ||R_k|| / ||R_0||
+  double energyTolerance = 1e-16;    // |du_k . R_k| / |du_0 . R_0| (FEAP's default)
+  Criterion criterion = Criterion::Energy;
+  double divergenceFactor = 1e6;     // ||R_k|| > factor * ||R_0|| counts as divergence
+  bool lineSearch = false;
+};
+
+struct CutbackSpec {
+  int maxCutbacks = 10;        // per step, total halvings before the run stops
+  double factor = 0.5;         // dt multiplier on failure
+  int growAfter = 3;           // easy steps (iterations <= easyIterations) before regrowth
+  int easyIterations = 6;
+  double growFactor = 2.0;     // dt multiplier on regrowth, never beyond the phase's dt
+};
+
+// One phase of the solve block: `steps` load steps of size dt, each solved by Newton.
+struct PhaseSpec {
+  int steps = 1;
+  double dt = 1.0;
+  NewtonSpec newton;
+  CutbackSpec cutback;
+  int outputEvery = 1;  // write every k-th converged step (the phase's last step always)
+  SourceLocation where;
+};
+
+struct OutputSpec {
+  std::string file;  // HDF5 path; empty = <deck basename>.h5 in the working directory
+  bool displacement = true;
+  bool reaction = true;
+  bool stress = false;
+  bool contact = true;
+  bool csv = true;   // <file stem>_reactions.csv
+  bool xdmf = true;  // <file stem>.xdmf
+  SourceLocation where;
+};
+
+// A value to compare a result against (issue 6). `quantity` names an output, e.g.
+// "reaction:top:z" or "contact:pair1:force:z"; the reference is a number, a table over time,
+// or a named analytic solution with parameters.
+struct ReferenceSpec {
+  std::string quantity;
+  std::optional<double> value;
+  std::vector<std::pair<double, double>> table;
+  std::string analytic;                      // e.g. "hertz_sphere"
+  std::map<std::string, double> parameters;  // of the analytic solution
+  SourceLocation where;
+};
+
+struct ProblemSpec {
+  std::string title;
+  std::string deckPath;  // as given on the command line
+  std::string deckText;  // the main deck's text followed by every included file's text
+  MeshSpec mesh;
+  std::vector<MaterialSpec> materials;
+  std::vector<ElementBlockSpec> elementBlocks;
+  std::vector<FixSpec> fixes;
+  std::vector<PrescribeSpec> prescribed;
+  std::vector<LoadSpec> loads;
+  std::vector<RigidSurfaceSpec> rigidSurfaces;
+  std::vector<ContactSpec> contacts;
+  std::vector<PhaseSpec> phases;
+  OutputSpec output;
+  std::vector<ReferenceSpec> references;
+};
+
+}  // namespace cc

@@ -1,0 +1,53 @@
+// Assembler: evaluates Contributions item by item in parallel (OpenMP, colored so that no two
+// items of one color share a node: no locks on the hot path) and scatters into the global
+// nodal force vector and the sparse tangent blocks K_ff (free x free) and K_fp (free x
+// prescribed). The sparsity pattern is rebuilt only when a contribution's topology changes.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "fem/contribution.hpp"
+#include "fem/dof_map.hpp"
+
+namespace cc {
+
+using SparseMatrix = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
+
+struct SystemMatrices {
+  SparseMatrix free;      // K_ff: numFree x numFree (full storage, both triangles)
+  SparseMatrix coupling;  // K_fp: numFree x numPrescribed
+  bool symmetric = true;  // every contribution reported a symmetric tangent
+  std::uint64_t patternVersion = 0;  // changes whenever the pattern of `free` changes
+};
+
+// Wall time spent in the parts of an assembly, accumulated over calls (for benchmarks).
+struct AssemblyTimings {
+  double prepare = 0;   // Contribution::prepare (contact search, projection)
+  double evaluate = 0;  // item evaluation + scatter
+  double pattern = 0;   // pattern and coloring rebuilds
+};
+
+class Assembler {
+ public:
+  Assembler(const DofMap& dofs, std::vector<Contribution*> contributions);
+  ~Assembler();
+
+  // Adds all contributions at `state` into `force` (3 * numNodes, zeroed here) and, if
+  // `tangent` is given, into its matrices (pattern kept or rebuilt, values zeroed here).
+  // Throws StepFailure naming the first failing item (NaN, inverted element, projection...).
+  void assemble(const AssemblyState& state, Eigen::VectorXd& force, SystemMatrices* tangent);
+
+  const AssemblyTimings& timings() const { return timings_; }
+  int threads() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  AssemblyTimings timings_;
+};
+
+}  // namespace cc

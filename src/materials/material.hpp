@@ -1,0 +1,36 @@
+// Material interface: hyperelastic laws written in the reference configuration. Given the
+// Green-Lagrange strain E they return the second Piola-Kirchhoff stress S and the material
+// tangent D = dS/dE. Voigt order: 11, 22, 33, 12, 23, 13; strains carry engineering shears
+// (2 E12, 2 E23, 2 E13) so that S : dE = S_v . dE_v.
+#pragma once
+
+#include <Eigen/Core>
+#include <memory>
+#include <string>
+
+namespace cc {
+
+using Vector6d = Eigen::Matrix<double, 6, 1>;
+using Matrix6d = Eigen::Matrix<double, 6, 6>;
+
+class Material {
+ public:
+  virtual ~Material() = default;
+  virtual std::string name() const = 0;
+  // Returns false if the strain is outside the law's domain (e.g. det C <= 0 for neo-Hooke).
+  virtual bool evaluate(const Vector6d& strainVoigt, Vector6d& stressVoigt,
+                        Matrix6d* tangent) const = 0;
+  // Small-strain Lame constants, for penalty defaults and reference solutions.
+  virtual double youngsModulus() const = 0;
+  virtual double poissonRatio() const = 0;
+};
+
+// Green-Lagrange strain in Voigt notation (engineering shears) from the deformation gradient.
+Vector6d greenLagrangeVoigt(const Eigen::Matrix3d& F);
+// Symmetric tensor <-> Voigt stress vector (no factor 2).
+Eigen::Matrix3d stressFromVoigt(const Vector6d& s);
+
+std::unique_ptr<Material> makeStVenantKirchhoff(double youngsModulus, double poissonRatio);
+std::unique_ptr<Material> makeNeoHooke(double youngsModulus, double poissonRatio);
+
+}  // namespace cc

@@ -1,0 +1,44 @@
+// NonlinearProblem: what the Newton solver and the load stepper need from a model, nothing
+// more. The Model implements it; the solver never knows which elements or contacts it solves.
+#pragma once
+
+#include <Eigen/Core>
+
+#include "fem/assembler.hpp"
+#include "fem/dof_map.hpp"
+#include "output/results.hpp"
+
+namespace cc {
+
+class NonlinearProblem {
+ public:
+  virtual ~NonlinearProblem() = default;
+  virtual const DofMap& dofMap() const = 0;
+  virtual const Eigen::Matrix3Xd& referenceCoordinates() const = 0;
+  // Values of the prescribed dofs (DofMap::prescribedDofs order) at time t.
+  virtual void prescribedValues(double t, Eigen::VectorXd& values) const = 0;
+  // External nodal forces (3 * numNodes) at time t.
+  virtual void externalForces(double t, Eigen::VectorXd& force) const = 0;
+  // Internal nodal forces (elements + contact, 3 * numNodes) and optionally the tangent.
+  // Throws StepFailure when an element or contact point fails.
+  virtual void assemble(const AssemblyState& state, Eigen::VectorXd& internalForce,
+                        SystemMatrices* tangent) = 0;
+  virtual void commitStep() = 0;   // the step converged: keep its history
+  virtual void restoreStep() = 0;  // the step is cut back: forget the attempt
+};
+
+// Receives what the stepper produces; the model and the results writer live behind it.
+class StepObserver {
+ public:
+  virtual ~StepObserver() = default;
+  virtual void iteration(const IterationRecord&) {}
+  virtual void cutback(const CutbackRecord&) {}
+  // A step converged (after commitStep). displacement and internalForce are 3 * numNodes.
+  virtual void stepConverged(int step, double time, int iterations, int cutbacks,
+                             const Eigen::VectorXd& displacement,
+                             const Eigen::VectorXd& internalForce, bool writeOutput) = 0;
+  // Polled between iterations (SIGINT/SIGTERM handling).
+  virtual bool stopRequested() const { return false; }
+};
+
+}  // namespace cc

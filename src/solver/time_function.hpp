@@ -1,0 +1,24 @@
+// Time functions: scalar functions of time t (and the reference position x, y, z) used for
+// prescribed displacements, loads and rigid-surface motions. Built from a FunctionSpec as a
+// muParser expression or a piecewise-linear table.
+#pragma once
+
+#include <Eigen/Core>
+#include <memory>
+
+#include "deck/problem_spec.hpp"
+
+namespace cc {
+
+class ScalarFunction {
+ public:
+  virtual ~ScalarFunction() = default;
+  // Not thread-safe (muParser keeps state); evaluate from one thread.
+  virtual double operator()(double t, const Eigen::Vector3d& position) const = 0;
+  double operator()(double t) const { return (*this)(t, Eigen::Vector3d::Zero()); }
+};
+
+// Throws InputError (at spec.where) if the expression does not parse or uses unknown names.
+std::unique_ptr<ScalarFunction> makeFunction(const FunctionSpec& spec);
+
+}  // namespace cc
