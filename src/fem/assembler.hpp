@@ -21,14 +21,18 @@ struct SystemMatrices {
   SparseMatrix free;      // K_ff: numFree x numFree (full storage, both triangles)
   SparseMatrix coupling;  // K_fp: numFree x numPrescribed
   bool symmetric = true;  // every contribution reported a symmetric tangent
-  std::uint64_t patternVersion = 0;  // changes whenever the pattern of `free` changes
+  std::uint64_t patternVersion = 0;  // changes with the pattern; unique in the process, 0 = none
 };
 
-// Wall time spent in the parts of an assembly, accumulated over calls (for benchmarks).
+// Wall time spent in the parts of an assembly and how often the expensive set-up ran,
+// accumulated over calls (for benchmarks and tests).
 struct AssemblyTimings {
-  double prepare = 0;   // Contribution::prepare (contact search, projection)
-  double evaluate = 0;  // item evaluation + scatter
-  double pattern = 0;   // pattern and coloring rebuilds
+  double prepare = 0;     // Contribution::prepare (contact search, projection)
+  double evaluate = 0;    // item evaluation + scatter
+  double pattern = 0;     // pattern and coloring rebuilds
+  int assemblies = 0;     // calls of assemble()
+  int colorings = 0;      // item colorings computed (one per contribution topology change)
+  int patternBuilds = 0;  // sparsity pattern constructions
 };
 
 class Assembler {
@@ -38,6 +42,9 @@ class Assembler {
 
   // Adds all contributions at `state` into `force` (3 * numNodes, zeroed here) and, if
   // `tangent` is given, into its matrices (pattern kept or rebuilt, values zeroed here).
+  // Pass the same SystemMatrices every time: the pattern lives only there (no second copy),
+  // and it is rebuilt when a topology changed or `tangent` holds another pattern version. A
+  // rebuild that reproduces the old pattern keeps its version (no new symbolic analysis).
   // Throws StepFailure naming the first failing item (NaN, inverted element, projection...).
   void assemble(const AssemblyState& state, Eigen::VectorXd& force, SystemMatrices* tangent);
 

@@ -1,0 +1,309 @@
+// Parallel assembly: per contribution, items of one color run in an OpenMP loop, each thread
+// with its own local buffers, and scatter straight into the force vector and the compressed
+// columns of K_ff / K_fp (colors guarantee disjoint writes, so no locks or atomics).
+#include "fem/assembler.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <exception>
+#include <optional>
+#include <string>
+
+#include "fem/coloring.hpp"
+#include "fem/sparsity_pattern.hpp"
+
+namespace cc {
+
+namespace {
+
+// Items handed to a thread at a time: large enough to amortize scheduling, small enough to
+// balance elements of very different cost (contact items next to empty ones).
+constexpr int kScheduleChunk = 16;
+
+// Pattern versions are unique in the process so that a solver keyed on a version never
+// confuses patterns of two assemblers.
+std::atomic<std::uint64_t> nextPatternVersion{1};
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// Identity of an item list: the pattern and coloring follow it.
+struct TopologyKey {
+  std::uint64_t version = 0;
+  std::size_t itemCount = 0;
+  bool operator==(const TopologyKey&) const = default;
+};
+
+TopologyKey topologyOf(const Contribution& contribution) {
+  return {contribution.topologyVersion(), contribution.itemCount()};
+}
+
+// Per item size: local vectors reused across items (no allocation on the hot path).
+struct LocalBuffers {
+  Eigen::VectorXd force;
+  Eigen::MatrixXd tangent;
+  std::vector<int> equations;     // free equation of each local dof, or -1
+  std::vector<int> prescribed;    // prescribed index of each local dof, or -1
+  std::vector<int> firstEquation; // smallest free equation of each local node, or -1
+};
+
+// The first failure one thread met (items are visited in ascending order within a color).
+struct ItemFailure {
+  bool failed = false;
+  std::size_t item = 0;
+  FailureKind kind = FailureKind::NotFinite;
+  std::string detail;
+  std::exception_ptr error;  // a non-StepFailure exception (a bug), rethrown after the loop
+
+  void record(std::size_t failedItem, FailureKind failureKind, std::string text,
+              std::exception_ptr exception = nullptr) {
+    if (failed && item <= failedItem) return;
+    failed = true;
+    item = failedItem;
+    kind = failureKind;
+    detail = std::move(text);
+    error = exception;
+  }
+};
+
+struct ThreadBuffers {
+  std::vector<LocalBuffers> bySize;  // indexed by the item's node count
+  ItemFailure failure;
+
+  LocalBuffers& forNodes(std::size_t numNodes, bool withTangent) {
+    if (bySize.size() <= numNodes) bySize.resize(numNodes + 1);
+    LocalBuffers& local = bySize[numNodes];
+    const Eigen::Index size = static_cast<Eigen::Index>(3 * numNodes);
+    if (local.force.size() != size) {
+      local.force.resize(size);
+      local.equations.resize(3 * numNodes);
+      local.prescribed.resize(3 * numNodes);
+      local.firstEquation.resize(numNodes);
+    }
+    if (withTangent && local.tangent.rows() != size) local.tangent.resize(size, size);
+    return local;
+  }
+};
+
+// Adds local column `column` to a compressed block column, rows by local node. Rows of one
+// node's free dofs are consecutive equations and therefore consecutive entries of the column:
+// one binary search per (column, node) pair locates them.
+void scatterColumn(const LocalBuffers& local, int localColumn, int blockColumn,
+                   SparseMatrix& block) {
+  const int* rowsBegin = block.innerIndexPtr() + block.outerIndexPtr()[blockColumn];
+  const int* rowsEnd = block.innerIndexPtr() + block.outerIndexPtr()[blockColumn + 1];
+  double* values = block.valuePtr();
+  const std::size_t numNodes = local.firstEquation.size();
+  for (std::size_t k = 0; k < numNodes; ++k) {
+    const int first = local.firstEquation[k];
+    if (first < 0) continue;
+    const int* found = std::lower_bound(rowsBegin, rowsEnd, first);
+    const std::ptrdiff_t base = found - block.innerIndexPtr();
+    for (int component = 0; component < 3; ++component) {
+      const int row = local.equations[3 * k + component];
+      if (row >= 0) {
+        values[base + (row - first)] += local.tangent(static_cast<Eigen::Index>(3 * k + component),
+                                                      localColumn);
+      }
+    }
+  }
+}
+
+}  // namespace
+
+struct Assembler::Impl {
+  struct ContributionState {
+    std::optional<TopologyKey> colored;
+    ItemColoring coloring;
+  };
+
+  const DofMap& dofs;
+  std::vector<Contribution*> contributions;
+  std::vector<ContributionState> states;
+  std::vector<TopologyKey> patternKeys;  // topologies the current pattern was built from
+  std::uint64_t patternVersion = 0;
+  std::vector<ThreadBuffers> threadBuffers;
+
+  Impl(const DofMap& dofMap, std::vector<Contribution*> list)
+      : dofs(dofMap), contributions(std::move(list)), states(contributions.size()) {}
+
+  bool recolorChanged(AssemblyTimings& timings);
+  bool patternStale(const SystemMatrices& tangent) const;
+  void rebuildPattern(SystemMatrices& tangent, AssemblyTimings& timings);
+  void evaluateItem(Contribution& contribution, std::size_t item, const AssemblyState& state,
+                    ThreadBuffers& buffers, Eigen::VectorXd& force, SystemMatrices* tangent);
+  void evaluateContribution(std::size_t index, const AssemblyState& state, Eigen::VectorXd& force,
+                            SystemMatrices* tangent);
+};
+
+bool Assembler::Impl::recolorChanged(AssemblyTimings& timings) {
+  bool changed = false;
+  for (std::size_t c = 0; c < contributions.size(); ++c) {
+    const TopologyKey key = topologyOf(*contributions[c]);
+    if (states[c].colored == key) continue;
+    states[c].coloring = colorItems(*contributions[c], dofs.numNodes());
+    states[c].colored = key;
+    ++timings.colorings;
+    changed = true;
+  }
+  return changed;
+}
+
+bool Assembler::Impl::patternStale(const SystemMatrices& tangent) const {
+  if (patternVersion == 0 || tangent.patternVersion != patternVersion) return true;
+  for (std::size_t c = 0; c < contributions.size(); ++c) {
+    if (!(patternKeys[c] == topologyOf(*contributions[c]))) return true;
+  }
+  return false;
+}
+
+void Assembler::Impl::rebuildPattern(SystemMatrices& tangent, AssemblyTimings& timings) {
+  const NodeGraph graph = buildNodeGraph(contributions, dofs.numNodes());
+  SparseMatrix free, coupling;
+  buildSparsityPattern(dofs, graph, free, coupling);
+  ++timings.patternBuilds;
+  patternKeys.clear();
+  for (const Contribution* contribution : contributions) {
+    patternKeys.push_back(topologyOf(*contribution));
+  }
+  const bool unchanged = tangent.patternVersion != 0 && samePattern(free, tangent.free) &&
+                         samePattern(coupling, tangent.coupling);
+  tangent.free = std::move(free);
+  tangent.coupling = std::move(coupling);
+  if (!unchanged) tangent.patternVersion = nextPatternVersion++;
+  patternVersion = tangent.patternVersion;
+}
+
+void Assembler::Impl::evaluateItem(Contribution& contribution, std::size_t item,
+                                   const AssemblyState& state, ThreadBuffers& buffers,
+                                   Eigen::VectorXd& force, SystemMatrices* tangent) {
+  const std::span<const int> nodes = contribution.itemNodes(item);
+  LocalBuffers& local = buffers.forNodes(nodes.size(), tangent != nullptr);
+  local.force.setZero();
+  if (tangent) local.tangent.setZero();
+  LocalStatus status;
+  try {
+    status = contribution.evaluate(item, state, local.force, tangent ? &local.tangent : nullptr);
+  } catch (const StepFailure& failure) {
+    status = LocalStatus::failure(failure.kind(), failure.what());
+  } catch (...) {
+    buffers.failure.record(item, FailureKind::NotFinite, "exception", std::current_exception());
+    return;
+  }
+  if (!status.ok) {
+    buffers.failure.record(item, status.kind, std::move(status.detail));
+    return;
+  }
+  if (!local.force.allFinite() || (tangent && !local.tangent.allFinite())) {
+    buffers.failure.record(item, FailureKind::NotFinite, "non-finite local force or tangent");
+    return;
+  }
+  for (std::size_t k = 0; k < nodes.size(); ++k) {
+    force.segment<3>(3 * static_cast<Eigen::Index>(nodes[k])) += local.force.segment<3>(3 * k);
+  }
+  if (!tangent) return;
+  for (std::size_t k = 0; k < nodes.size(); ++k) {
+    local.firstEquation[k] = -1;
+    for (int component = 0; component < 3; ++component) {
+      const int dof = 3 * nodes[k] + component;
+      local.equations[3 * k + component] = dofs.equation(dof);
+      local.prescribed[3 * k + component] = dofs.prescribedIndex(dof);
+      if (local.firstEquation[k] < 0) local.firstEquation[k] = dofs.equation(dof);
+    }
+  }
+  for (int column = 0; column < static_cast<int>(3 * nodes.size()); ++column) {
+    if (local.equations[column] >= 0) {
+      scatterColumn(local, column, local.equations[column], tangent->free);
+    } else if (local.prescribed[column] >= 0) {
+      scatterColumn(local, column, local.prescribed[column], tangent->coupling);
+    }
+  }
+}
+
+void Assembler::Impl::evaluateContribution(std::size_t index, const AssemblyState& state,
+                                           Eigen::VectorXd& force, SystemMatrices* tangent) {
+  Contribution& contribution = *contributions[index];
+  const ItemColoring& coloring = states[index].coloring;
+  for (ThreadBuffers& buffers : threadBuffers) buffers.failure = ItemFailure{};
+#pragma omp parallel
+  {
+    ThreadBuffers& buffers = threadBuffers[omp_get_thread_num()];
+    for (std::size_t color = 0; color < coloring.numColors(); ++color) {
+      const std::ptrdiff_t begin = static_cast<std::ptrdiff_t>(coloring.colorBegin[color]);
+      const std::ptrdiff_t end = static_cast<std::ptrdiff_t>(coloring.colorBegin[color + 1]);
+#pragma omp for schedule(dynamic, kScheduleChunk)
+      for (std::ptrdiff_t k = begin; k < end; ++k) {
+        evaluateItem(contribution, coloring.items[k], state, buffers, force, tangent);
+      }
+    }
+  }
+  ItemFailure first;
+  for (const ThreadBuffers& buffers : threadBuffers) {
+    const ItemFailure& failure = buffers.failure;
+    if (failure.failed) first.record(failure.item, failure.kind, failure.detail, failure.error);
+  }
+  if (!first.failed) return;
+  if (first.error) std::rethrow_exception(first.error);
+  throw StepFailure(first.kind, contribution.name() + " item " + std::to_string(first.item) +
+                                    ": " + first.detail);
+}
+
+Assembler::Assembler(const DofMap& dofs, std::vector<Contribution*> contributions)
+    : impl_(std::make_unique<Impl>(dofs, std::move(contributions))) {}
+
+Assembler::~Assembler() = default;
+
+int Assembler::threads() const { return omp_get_max_threads(); }
+
+namespace {
+
+void throwIfNotFinite(const Eigen::VectorXd& force) {
+  for (Eigen::Index dof = 0; dof < force.size(); ++dof) {
+    if (!std::isfinite(force[dof])) {
+      throw StepFailure(FailureKind::NotFinite,
+                        "assembled force vector: non-finite value at node " +
+                            std::to_string(dof / 3) + " component " + "xyz"[dof % 3]);
+    }
+  }
+}
+
+}  // namespace
+
+void Assembler::assemble(const AssemblyState& state, Eigen::VectorXd& force,
+                         SystemMatrices* tangent) {
+  ++timings_.assemblies;
+  auto start = std::chrono::steady_clock::now();
+  for (Contribution* contribution : impl_->contributions) {
+    const LocalStatus status = contribution->prepare(state);
+    if (!status.ok) throw StepFailure(status.kind, contribution->name() + ": " + status.detail);
+  }
+  timings_.prepare += secondsSince(start);
+
+  start = std::chrono::steady_clock::now();
+  impl_->recolorChanged(timings_);
+  if (tangent && impl_->patternStale(*tangent)) impl_->rebuildPattern(*tangent, timings_);
+  timings_.pattern += secondsSince(start);
+
+  start = std::chrono::steady_clock::now();
+  impl_->threadBuffers.resize(static_cast<std::size_t>(omp_get_max_threads()));
+  force.setZero(3 * static_cast<Eigen::Index>(impl_->dofs.numNodes()));
+  if (tangent) {
+    tangent->free.coeffs().setZero();
+    tangent->coupling.coeffs().setZero();
+  }
+  bool symmetric = true;
+  for (std::size_t c = 0; c < impl_->contributions.size(); ++c) {
+    impl_->evaluateContribution(c, state, force, tangent);
+    symmetric = symmetric && impl_->contributions[c]->tangentSymmetric();
+  }
+  if (tangent) tangent->symmetric = symmetric;
+  timings_.evaluate += secondsSince(start);
+  throwIfNotFinite(force);
+}
+
+}  // namespace cc

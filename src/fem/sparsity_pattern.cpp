@@ -1,0 +1,95 @@
+// Node graph and compressed-column pattern construction. Memory stays O(nonzeros): one node
+// incidence list per contribution and a marker array, never per-item index maps.
+#include "fem/sparsity_pattern.hpp"
+
+#include <algorithm>
+#include <limits>
+#include <stdexcept>
+
+#include "fem/coloring.hpp"
+
+namespace cc {
+
+NodeGraph buildNodeGraph(std::span<Contribution* const> contributions, int numNodes) {
+  std::vector<NodeIncidence> incidences;
+  incidences.reserve(contributions.size());
+  for (const Contribution* contribution : contributions) {
+    incidences.push_back(nodeIncidence(*contribution, numNodes));
+  }
+  NodeGraph graph;
+  graph.offsets.assign(static_cast<std::size_t>(numNodes) + 1, 0);
+  std::vector<int> lastSeenBy(static_cast<std::size_t>(numNodes), -1);
+  for (int node = 0; node < numNodes; ++node) {
+    const std::size_t first = graph.neighbours.size();
+    graph.neighbours.push_back(node);
+    lastSeenBy[node] = node;
+    for (std::size_t c = 0; c < contributions.size(); ++c) {
+      const NodeIncidence& incidence = incidences[c];
+      for (std::size_t k = incidence.offsets[node]; k < incidence.offsets[node + 1]; ++k) {
+        for (int neighbour : contributions[c]->itemNodes(incidence.items[k])) {
+          if (lastSeenBy[neighbour] == node) continue;
+          lastSeenBy[neighbour] = node;
+          graph.neighbours.push_back(neighbour);
+        }
+      }
+    }
+    std::sort(graph.neighbours.begin() + static_cast<std::ptrdiff_t>(first), graph.neighbours.end());
+    graph.offsets[node + 1] = static_cast<std::int64_t>(graph.neighbours.size());
+  }
+  return graph;
+}
+
+namespace {
+
+// Rows of one column: the free equations of the column node's neighbours, ascending.
+template <typename RowVisitor>
+void visitRows(const DofMap& dofs, const NodeGraph& graph, int node, RowVisitor&& visit) {
+  for (std::int64_t k = graph.offsets[node]; k < graph.offsets[node + 1]; ++k) {
+    const int neighbour = graph.neighbours[k];
+    for (int component = 0; component < 3; ++component) {
+      const int row = dofs.equation(3 * neighbour + component);
+      if (row >= 0) visit(row);
+    }
+  }
+}
+
+// Fills one block: column j belongs to dof columnDofs[j].
+void fillBlock(const DofMap& dofs, const NodeGraph& graph, const std::vector<int>& columnDofs,
+               SparseMatrix& block) {
+  const int numColumns = static_cast<int>(columnDofs.size());
+  std::vector<int> columnStart(static_cast<std::size_t>(numColumns) + 1, 0);
+  std::int64_t nonZeros = 0;
+  for (int j = 0; j < numColumns; ++j) {
+    visitRows(dofs, graph, columnDofs[j] / 3, [&](int) { ++nonZeros; });
+    if (nonZeros > std::numeric_limits<int>::max()) {
+      throw std::length_error("sparsity pattern exceeds 2^31 nonzeros (int indices)");
+    }
+    columnStart[j + 1] = static_cast<int>(nonZeros);
+  }
+  block.resize(dofs.numFree(), numColumns);
+  block.resizeNonZeros(static_cast<Eigen::Index>(nonZeros));
+  std::copy(columnStart.begin(), columnStart.end(), block.outerIndexPtr());
+  int* rows = block.innerIndexPtr();
+  for (int j = 0; j < numColumns; ++j) {
+    int position = columnStart[j];
+    visitRows(dofs, graph, columnDofs[j] / 3, [&](int row) { rows[position++] = row; });
+  }
+  std::fill(block.valuePtr(), block.valuePtr() + nonZeros, 0.0);
+}
+
+}  // namespace
+
+void buildSparsityPattern(const DofMap& dofs, const NodeGraph& graph, SparseMatrix& free,
+                          SparseMatrix& coupling) {
+  fillBlock(dofs, graph, dofs.freeDofs(), free);
+  fillBlock(dofs, graph, dofs.prescribedDofs(), coupling);
+}
+
+bool samePattern(const SparseMatrix& a, const SparseMatrix& b) {
+  if (a.rows() != b.rows() || a.cols() != b.cols() || a.nonZeros() != b.nonZeros()) return false;
+  if (!a.isCompressed() || !b.isCompressed()) return false;
+  return std::equal(a.outerIndexPtr(), a.outerIndexPtr() + a.outerSize() + 1, b.outerIndexPtr()) &&
+         std::equal(a.innerIndexPtr(), a.innerIndexPtr() + a.nonZeros(), b.innerIndexPtr());
+}
+
+}  // namespace cc

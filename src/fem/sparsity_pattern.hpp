@@ -1,0 +1,29 @@
+// Sparsity pattern of the global tangent: the node graph of all items of all contributions,
+// expanded to the free x free (K_ff) and free x prescribed (K_fp) blocks in compressed columns.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "fem/assembler.hpp"
+
+namespace cc {
+
+// Neighbours of every node (itself included, ascending): nodes sharing an item with it.
+struct NodeGraph {
+  std::vector<std::int64_t> offsets;  // neighbours of n: neighbours[offsets[n]..offsets[n+1])
+  std::vector<int> neighbours;
+};
+
+NodeGraph buildNodeGraph(std::span<Contribution* const> contributions, int numNodes);
+
+// Resizes `free` and `coupling` to the pattern of `graph` with zero values. Because equations
+// are numbered node by node, visiting neighbours in ascending order yields sorted row indices.
+void buildSparsityPattern(const DofMap& dofs, const NodeGraph& graph, SparseMatrix& free,
+                          SparseMatrix& coupling);
+
+// Same structure (dimensions, column pointers, row indices); values are ignored.
+bool samePattern(const SparseMatrix& a, const SparseMatrix& b);
+
+}  // namespace cc
