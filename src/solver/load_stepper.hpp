@@ -1,12 +1,19 @@
 // Load stepping in phases with Newton's method per step and automatic cut-back: halve the step
 // on divergence, NaN/Inf, an element or contact failure or too many iterations; regrow after
 // easy steps; stop (keeping every converged step) after the cut-back limit.
+//
+// Time: phases run back to back from t = 0; phase i ends at T_i + steps_i * dt_i. Within a
+// phase the position is kept in units of its dt (s = 0..steps), so step ends are computed as
+// T_i + s * dt without accumulating increments. A (cut-back) step never crosses the next
+// nominal step end floor(s) + 1, so every nominal time of the phase, and its end, is hit exactly.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "deck/problem_spec.hpp"
+#include "solver/newton.hpp"
 #include "solver/nonlinear_problem.hpp"
 
 namespace cc {
@@ -31,12 +38,26 @@ struct StartState {
 class LoadStepper {
  public:
   LoadStepper(NonlinearProblem& problem, StepObserver& observer, std::vector<PhaseSpec> phases);
+  ~LoadStepper();
   RunSummary run(const StartState& start = {});
+  // Work so far (also during run(), e.g. from the observer for a progress line).
+  SolverStatistics statistics() const;
 
  private:
+  struct PhaseRun;
+  struct StepControl;
+  // Each returns false when the run stops (summary_ says why).
+  bool runPhase(const PhaseSpec& phase, double phaseStart, PhaseRun& run);
+  bool acceptStep(const PhaseSpec& phase, const NewtonResult& result, double time, bool phaseEnd,
+                  StepControl& control, PhaseRun& run);
+  bool rejectStep(const PhaseSpec& phase, const NewtonResult& result, const NewtonStep& step,
+                  double dt, StepControl& control, PhaseRun& run);
+
   NonlinearProblem& problem_;
   StepObserver& observer_;
   std::vector<PhaseSpec> phases_;
+  std::unique_ptr<Newton> newton_;
+  RunSummary summary_;
 };
 
 }  // namespace cc

@@ -1,1 +1,105 @@
-// placeholder: replaced by the module's implementation
+// Time functions: muParser expressions in t, x, y, z, and piecewise-linear tables that stay
+// constant beyond their first and last points.
+#include "solver/time_function.hpp"
+
+#include <muParser.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include <fmt/format.h>
+
+#include "common/errors.hpp"
+
+namespace cc {
+
+namespace {
+
+class ExpressionFunction final : public ScalarFunction {
+ public:
+  explicit ExpressionFunction(const FunctionSpec& spec) : where_(spec.where) {
+    parser_.DefineVar("t", &t_);
+    parser_.DefineVar("x", &position_[0]);
+    parser_.DefineVar("y", &position_[1]);
+    parser_.DefineVar("z", &position_[2]);
+    parser_.DefineConst("pi", std::numbers::pi);
+    try {
+      parser_.SetExpr(spec.expression);
+      parser_.Eval();  // muParser parses lazily: force it now so errors point at the deck
+    } catch (const mu::Parser::exception_type& error) {
+      throw InputError(where_, fmt::format("cannot parse expression \"{}\": {} (at character {})",
+                                           spec.expression, error.GetMsg(), error.GetPos() + 1));
+    }
+  }
+
+  ExpressionFunction(const ExpressionFunction&) = delete;  // the parser points at our members
+  ExpressionFunction& operator=(const ExpressionFunction&) = delete;
+
+  double operator()(double t, const Eigen::Vector3d& position) const override {
+    t_ = t;
+    for (int axis = 0; axis < 3; ++axis) position_[axis] = position[axis];
+    double value = 0;
+    try {
+      value = parser_.Eval();
+    } catch (const mu::Parser::exception_type& error) {
+      throw InputError(where_, fmt::format("evaluating \"{}\" at t = {}: {}",
+                                           parser_.GetExpr(), t, error.GetMsg()));
+    }
+    if (!std::isfinite(value)) {
+      throw InputError(where_, fmt::format("expression \"{}\" is not finite at t = {}, x = ({}, "
+                                           "{}, {})",
+                                           parser_.GetExpr(), t, position[0], position[1],
+                                           position[2]));
+    }
+    return value;
+  }
+
+ private:
+  SourceLocation where_;
+  mutable mu::Parser parser_;
+  mutable double t_ = 0;
+  mutable double position_[3] = {0, 0, 0};
+};
+
+class TableFunction final : public ScalarFunction {
+ public:
+  explicit TableFunction(const FunctionSpec& spec) : points_(spec.table) {
+    if (points_.empty()) throw InputError(spec.where, "a table needs at least one (t, value) pair");
+    for (std::size_t k = 0; k < points_.size(); ++k) {
+      if (!std::isfinite(points_[k].first) || !std::isfinite(points_[k].second)) {
+        throw InputError(spec.where, fmt::format("table entry {} is not a finite number", k + 1));
+      }
+      if (k > 0 && !(points_[k].first > points_[k - 1].first)) {
+        throw InputError(spec.where,
+                         fmt::format("table times must increase strictly (entry {}: t = {} after "
+                                     "t = {})",
+                                     k + 1, points_[k].first, points_[k - 1].first));
+      }
+    }
+  }
+
+  double operator()(double t, const Eigen::Vector3d&) const override {
+    if (t <= points_.front().first) return points_.front().second;
+    if (t >= points_.back().first) return points_.back().second;
+    const auto upper = std::upper_bound(points_.begin(), points_.end(), t,
+                                        [](double time, const auto& point) {
+                                          return time < point.first;
+                                        });
+    const auto lower = upper - 1;
+    const double fraction = (t - lower->first) / (upper->first - lower->first);
+    return lower->second + fraction * (upper->second - lower->second);
+  }
+
+ private:
+  std::vector<std::pair<double, double>> points_;
+};
+
+}  // namespace
+
+std::unique_ptr<ScalarFunction> makeFunction(const FunctionSpec& spec) {
+  if (spec.kind == FunctionSpec::Kind::Table) return std::make_unique<TableFunction>(spec);
+  return std::make_unique<ExpressionFunction>(spec);
+}
+
+}  // namespace cc

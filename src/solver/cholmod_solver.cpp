@@ -1,0 +1,152 @@
+// CHOLMOD supernodal Cholesky (A = L L^T) behind the LinearSolver interface, called through
+// CHOLMOD's C API so that the ordering, the failing pivot and the condition estimate are ours.
+#include <cholmod.h>
+
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "common/errors.hpp"
+#include "solver/linear_solver.hpp"
+
+namespace cc {
+
+namespace {
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// A non-owning CHOLMOD view of an Eigen matrix; stype = 1: only the upper triangle is read.
+cholmod_sparse viewOf(const SparseMatrix& matrix) {
+  if (!matrix.isCompressed() || matrix.rows() != matrix.cols()) {
+    throw std::invalid_argument("CHOLMOD: matrix must be square and compressed");
+  }
+  cholmod_sparse view{};
+  view.nrow = static_cast<std::size_t>(matrix.rows());
+  view.ncol = static_cast<std::size_t>(matrix.cols());
+  view.nzmax = static_cast<std::size_t>(matrix.nonZeros());
+  view.p = const_cast<int*>(matrix.outerIndexPtr());
+  view.i = const_cast<int*>(matrix.innerIndexPtr());
+  view.x = const_cast<double*>(matrix.valuePtr());
+  view.stype = 1;
+  view.itype = CHOLMOD_INT;
+  view.xtype = CHOLMOD_REAL;
+  view.dtype = CHOLMOD_DOUBLE;
+  view.sorted = 1;
+  view.packed = 1;
+  return view;
+}
+
+int orderingCode(CholmodOrdering ordering) {
+  switch (ordering) {
+    case CholmodOrdering::Amd: return CHOLMOD_AMD;
+    case CholmodOrdering::Metis: return CHOLMOD_METIS;
+    case CholmodOrdering::NestedDissection: return CHOLMOD_NESDIS;
+    case CholmodOrdering::Automatic: break;
+  }
+  return CHOLMOD_AMD;
+}
+
+class CholmodSolver final : public LinearSolver {
+ public:
+  explicit CholmodSolver(CholmodOrdering ordering) {
+    cholmod_start(&common_);
+    common_.print = 0;  // failures are reported as exceptions, not printed
+    common_.supernodal = CHOLMOD_SUPERNODAL;
+    if (ordering != CholmodOrdering::Automatic) {
+      common_.nmethods = 1;
+      common_.method[0].ordering = orderingCode(ordering);
+    }
+  }
+  ~CholmodSolver() override {
+    if (factor_) cholmod_free_factor(&factor_, &common_);
+    cholmod_finish(&common_);
+  }
+  CholmodSolver(const CholmodSolver&) = delete;
+  CholmodSolver& operator=(const CholmodSolver&) = delete;
+
+  std::string name() const override { return "CHOLMOD"; }
+
+  void analyzePattern(const SparseMatrix& matrix) override {
+    const auto start = std::chrono::steady_clock::now();
+    if (factor_) cholmod_free_factor(&factor_, &common_);
+    cholmod_sparse view = viewOf(matrix);
+    factor_ = cholmod_analyze(&view, &common_);
+    if (!factor_) {
+      throw std::runtime_error(fmt::format("CHOLMOD analysis failed (status {})", common_.status));
+    }
+    ++statistics_.analyses;
+    statistics_.analysisSeconds += secondsSince(start);
+  }
+
+  void factorize(const SparseMatrix& matrix) override {
+    if (!factor_ || factor_->n != static_cast<std::size_t>(matrix.rows())) {
+      throw std::logic_error("CHOLMOD: factorize() before analyzePattern() of this pattern");
+    }
+    const auto start = std::chrono::steady_clock::now();
+    ++statistics_.factorizations;
+    cholmod_sparse view = viewOf(matrix);
+    cholmod_factorize(&view, factor_, &common_);
+    statistics_.factorizationSeconds += secondsSince(start);
+    if (common_.status == CHOLMOD_NOT_POSDEF || factor_->minor < factor_->n) {
+      ++statistics_.failedFactorizations;
+      const std::size_t pivot = factor_->minor;
+      const int equation = static_cast<const int*>(factor_->Perm)[pivot];
+      throw StepFailure(FailureKind::SingularSystem,
+                        fmt::format("CHOLMOD: tangent not positive definite (pivot {} of {} "
+                                    "fails, free equation {})",
+                                    pivot + 1, factor_->n, equation));
+    }
+    if (common_.status < CHOLMOD_OK) {
+      ++statistics_.failedFactorizations;
+      throw std::runtime_error(fmt::format("CHOLMOD factorization failed (status {})",
+                                           common_.status));
+    }
+    // cholmod_rcond is (min L_ii / max L_ii)^2, the pivot ratio of A = L D L^T.
+    const double pivotRatio = cholmod_rcond(factor_, &common_);
+    if (!(pivotRatio >= kSingularPivotRatio)) {
+      ++statistics_.failedFactorizations;
+      throw StepFailure(FailureKind::SingularSystem,
+                        fmt::format("CHOLMOD: tangent numerically singular (smallest/largest "
+                                    "pivot {:.3g})",
+                                    pivotRatio));
+    }
+  }
+
+  Eigen::VectorXd solve(const Eigen::VectorXd& rhs) override {
+    const auto start = std::chrono::steady_clock::now();
+    cholmod_dense right{};
+    right.nrow = static_cast<std::size_t>(rhs.size());
+    right.ncol = 1;
+    right.nzmax = right.nrow;
+    right.d = right.nrow;
+    right.x = const_cast<double*>(rhs.data());
+    right.xtype = CHOLMOD_REAL;
+    right.dtype = CHOLMOD_DOUBLE;
+    cholmod_dense* solution = cholmod_solve(CHOLMOD_A, factor_, &right, &common_);
+    if (!solution) {
+      throw std::runtime_error(fmt::format("CHOLMOD solve failed (status {})", common_.status));
+    }
+    Eigen::VectorXd result =
+        Eigen::Map<const Eigen::VectorXd>(static_cast<const double*>(solution->x), rhs.size());
+    cholmod_free_dense(&solution, &common_);
+    ++statistics_.solves;
+    statistics_.solveSeconds += secondsSince(start);
+    return result;
+  }
+
+ private:
+  cholmod_common common_{};
+  cholmod_factor* factor_ = nullptr;
+};
+
+}  // namespace
+
+std::unique_ptr<LinearSolver> makeCholmodSolver(CholmodOrdering ordering) {
+  return std::make_unique<CholmodSolver>(ordering);
+}
+
+}  // namespace cc

@@ -1,0 +1,168 @@
+// Phases of load steps with cut-back and regrowth (see load_stepper.hpp for the time keeping).
+#include "solver/load_stepper.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+namespace cc {
+
+namespace {
+
+// A phase position (in units of its dt) this close to a nominal step end is that step end:
+// absorbs the round-off of (t - T) / dt at a restart and of non-dyadic cut-back factors.
+constexpr double kPositionSnap = 1e-9;
+
+double snapped(double position) {
+  const double nearest = std::round(position);
+  return std::abs(position - nearest) < kPositionSnap ? nearest : position;
+}
+
+}  // namespace
+
+// Step size and counters of the phase being run.
+struct LoadStepper::StepControl {
+  double fraction = 1;  // step size in units of the phase's dt
+  int easySteps = 0;    // consecutive converged steps with few iterations
+  int cutbacks = 0;     // cut-backs of the step being attempted
+  int convergedInPhase = 0;
+  bool singularAtStart = false;  // the last attempt was singular in its first iteration
+};
+
+// The state carried from step to step and phase to phase.
+struct LoadStepper::PhaseRun {
+  Eigen::VectorXd displacement;  // being iterated
+  Eigen::VectorXd converged;     // at the last converged step
+  double time = 0;               // of the last converged step
+  int step = 0;                  // number of the last converged step
+};
+
+LoadStepper::LoadStepper(NonlinearProblem& problem, StepObserver& observer,
+                         std::vector<PhaseSpec> phases)
+    : problem_(problem), observer_(observer), phases_(std::move(phases)) {}
+
+LoadStepper::~LoadStepper() = default;
+
+SolverStatistics LoadStepper::statistics() const {
+  SolverStatistics statistics;
+  statistics.steps = summary_.stepsConverged;
+  statistics.iterations = summary_.totalIterations;
+  statistics.cutbacks = summary_.totalCutbacks;
+  if (newton_) {
+    statistics.assemblies = newton_->assemblies();
+    statistics.assemblySeconds = newton_->assemblySeconds();
+    statistics.linear = newton_->linearSolver().statistics();
+    statistics.choleskyFallbacks = newton_->linearSolver().choleskyFallbacks();
+  }
+  return statistics;
+}
+
+RunSummary LoadStepper::run(const StartState& start) {
+  summary_ = RunSummary{};
+  newton_ = std::make_unique<Newton>(problem_, observer_, Newton::Clock::now());
+  const Eigen::Index size = 3 * static_cast<Eigen::Index>(problem_.dofMap().numNodes());
+  PhaseRun run;
+  run.displacement =
+      start.displacement.size() == 0 ? Eigen::VectorXd::Zero(size) : start.displacement;
+  if (run.displacement.size() != size) {
+    throw std::invalid_argument(fmt::format("restart displacement has {} values, the model {}",
+                                            run.displacement.size(), size));
+  }
+  run.converged = run.displacement;
+  run.time = start.time;
+  run.step = start.step;
+  summary_.finalTime = start.time;
+  double phaseStart = 0;
+  for (const PhaseSpec& phase : phases_) {
+    if (!runPhase(phase, phaseStart, run)) return summary_;
+    phaseStart = phaseStart + phase.steps * phase.dt;
+  }
+  summary_.outcome = RunSummary::Outcome::Completed;
+  return summary_;
+}
+
+bool LoadStepper::runPhase(const PhaseSpec& phase, double phaseStart, PhaseRun& run) {
+  StepControl control;
+  double position = std::max(0.0, snapped((run.time - phaseStart) / phase.dt));
+  while (position < phase.steps) {
+    const double target =
+        snapped(std::min(position + control.fraction, std::floor(position) + 1));
+    const double targetTime = phaseStart + target * phase.dt;
+    const NewtonStep step{run.step + 1, control.cutbacks, targetTime, run.time};
+    const NewtonResult result = newton_->solve(step, phase.newton, run.displacement);
+    if (result.status == NewtonResult::Status::Converged) {
+      position = target;
+      if (!acceptStep(phase, result, targetTime, position >= phase.steps, control, run)) {
+        return false;
+      }
+    } else if (!rejectStep(phase, result, step, (target - position) * phase.dt, control, run)) {
+      return false;
+    }
+  }
+  return true;
+}
+
+bool LoadStepper::acceptStep(const PhaseSpec& phase, const NewtonResult& result, double time,
+                             bool phaseEnd, StepControl& control, PhaseRun& run) {
+  problem_.commitStep();
+  run.converged = run.displacement;
+  run.time = time;
+  ++run.step;
+  ++control.convergedInPhase;
+  ++summary_.stepsConverged;
+  summary_.totalIterations += result.iterations;
+  summary_.finalTime = time;
+  const bool write = control.convergedInPhase % phase.outputEvery == 0 || phaseEnd;
+  observer_.stepConverged(run.step, time, result.iterations, control.cutbacks, run.displacement,
+                          newton_->internalForce(), write);
+  const CutbackSpec& cutback = phase.cutback;
+  control.easySteps = result.iterations <= cutback.easyIterations ? control.easySteps + 1 : 0;
+  if (control.easySteps >= cutback.growAfter && control.fraction < 1) {
+    control.fraction = std::min(1.0, control.fraction * cutback.growFactor);
+    control.easySteps = 0;
+  }
+  control.cutbacks = 0;
+  control.singularAtStart = false;
+  if (!observer_.stopRequested()) return true;
+  summary_.outcome = RunSummary::Outcome::Interrupted;
+  summary_.message = fmt::format("interrupted after step {} at t = {:.6g}", run.step, run.time);
+  return false;
+}
+
+bool LoadStepper::rejectStep(const PhaseSpec& phase, const NewtonResult& result,
+                             const NewtonStep& step, double dt, StepControl& control,
+                             PhaseRun& run) {
+  problem_.restoreStep();
+  run.displacement = run.converged;
+  if (result.status == NewtonResult::Status::Interrupted) {
+    summary_.outcome = RunSummary::Outcome::Interrupted;
+    summary_.message =
+        fmt::format("interrupted at t = {:.6g}; the unconverged step to t = {:.6g} was discarded",
+                    run.time, step.time);
+    return false;
+  }
+  // The first iteration's tangent is assembled at the converged state: singular there twice in
+  // a row, it will not be cured by smaller steps.
+  const bool singularNow = result.failure == FailureKind::SingularSystem && result.iterations == 1;
+  const bool persistentSingular = singularNow && control.singularAtStart;
+  control.singularAtStart = singularNow;
+  control.easySteps = 0;
+  if (control.cutbacks >= phase.cutback.maxCutbacks || persistentSingular) {
+    summary_.outcome = result.failure == FailureKind::SingularSystem
+                           ? RunSummary::Outcome::Singular
+                           : RunSummary::Outcome::Diverged;
+    summary_.message =
+        fmt::format("step {} to t = {:.6g} (dt = {:.3g}) failed after {} cut-backs: {}",
+                    step.step, step.time, dt, control.cutbacks, result.message);
+    return false;
+  }
+  ++control.cutbacks;
+  ++summary_.totalCutbacks;
+  control.fraction *= phase.cutback.factor;
+  observer_.cutback({step.step, step.time, control.fraction * phase.dt, result.message});
+  return true;
+}
+
+}  // namespace cc

@@ -1,0 +1,196 @@
+// Newton iteration of one load step: predictor with the prescribed increment, residual and
+// energy norms per iteration, convergence tests as documented in newton.hpp, optional line search.
+#include "solver/newton.hpp"
+
+#include <cmath>
+#include <limits>
+
+#include <fmt/format.h>
+
+namespace cc {
+
+namespace {
+
+double secondsSince(Newton::Clock::time_point start) {
+  return std::chrono::duration<double>(Newton::Clock::now() - start).count();
+}
+
+Eigen::VectorXd gather(const Eigen::VectorXd& nodal, const std::vector<int>& dofs) {
+  Eigen::VectorXd values(static_cast<Eigen::Index>(dofs.size()));
+  for (std::size_t k = 0; k < dofs.size(); ++k) values[k] = nodal[dofs[k]];
+  return values;
+}
+
+// Norms of one iteration relative to the first one of the step.
+struct Norms {
+  double residual = 0, firstResidual = 0, energy = 0, firstEnergy = 0;
+  double relativeResidual() const { return firstResidual > 0 ? residual / firstResidual : 0; }
+  double relativeEnergy() const { return firstEnergy > 0 ? energy / firstEnergy : 0; }
+};
+
+NewtonResult converged(int iterations) {
+  return {NewtonResult::Status::Converged, iterations, FailureKind::Diverged, {}};
+}
+
+NewtonResult failed(int iteration, FailureKind kind, std::string message) {
+  return {NewtonResult::Status::Failed, iteration, kind, std::move(message)};
+}
+
+bool usesResidual(NewtonSpec::Criterion criterion) {
+  return criterion == NewtonSpec::Criterion::Residual || criterion == NewtonSpec::Criterion::Either;
+}
+
+// The test after solve k (see newton.hpp); the Residual criterion never converges here.
+bool convergedAfterSolve(const NewtonSpec& spec, const Norms& norms, int iteration) {
+  const bool energyMet = norms.energy <= spec.energyTolerance * norms.firstEnergy;
+  const bool residualMet = iteration > 1 && norms.relativeResidual() <= spec.residualTolerance;
+  switch (spec.criterion) {
+    case NewtonSpec::Criterion::Energy:
+    case NewtonSpec::Criterion::Either: return energyMet;
+    case NewtonSpec::Criterion::Both: return energyMet && residualMet;
+    case NewtonSpec::Criterion::Residual: return false;
+  }
+  return false;
+}
+
+}  // namespace
+
+Newton::Newton(NonlinearProblem& problem, StepObserver& observer, Clock::time_point runStart)
+    : problem_(problem), observer_(observer), runStart_(runStart) {}
+
+void Newton::assembleAt(const Eigen::VectorXd& displacement, const NewtonStep& step,
+                        bool withTangent) {
+  const Eigen::Matrix3Xd& reference = problem_.referenceCoordinates();
+  current_ = reference + Eigen::Map<const Eigen::Matrix3Xd>(displacement.data(), 3,
+                                                           reference.cols());
+  AssemblyState state;
+  state.time = step.time;
+  state.previousTime = step.previousTime;
+  state.reference = &reference;
+  state.current = &current_;
+  state.previous = &previous_;
+  const auto start = Clock::now();
+  ++assemblies_;
+  problem_.assemble(state, internalForce_, withTangent ? &tangent_ : nullptr);
+  assemblySeconds_ += secondsSince(start);
+}
+
+Eigen::VectorXd Newton::freeResidual() const {
+  return gather(internalForce_ - externalForce_, problem_.dofMap().freeDofs());
+}
+
+void Newton::addToFree(Eigen::VectorXd& displacement, const Eigen::VectorXd& du,
+                       double scale) const {
+  const std::vector<int>& freeDofs = problem_.dofMap().freeDofs();
+  for (std::size_t k = 0; k < freeDofs.size(); ++k) displacement[freeDofs[k]] += scale * du[k];
+}
+
+double Newton::lineSearch(const NewtonStep& step, const Eigen::VectorXd& du,
+                          const Eigen::VectorXd& rhs, Eigen::VectorXd& displacement) {
+  const double initialSlope = std::abs(du.dot(rhs));  // |du . R(u)|, R = -rhs
+  double bestFraction = 1, bestSlope = std::numeric_limits<double>::infinity();
+  double fraction = 1, lastTried = 1;
+  for (int halving = 0; halving <= kLineSearchHalvings; ++halving, fraction *= 0.5) {
+    lastTried = fraction;
+    Eigen::VectorXd trial = displacement;
+    addToFree(trial, du, fraction);
+    double slope = std::numeric_limits<double>::infinity();
+    try {
+      assembleAt(trial, step, false);
+      slope = std::abs(du.dot(freeResidual()));
+    } catch (const StepFailure&) {
+      // an inverted element or a lost projection at this fraction: try a shorter step
+    }
+    if (!std::isfinite(slope)) slope = std::numeric_limits<double>::infinity();
+    if (slope < bestSlope) bestSlope = slope, bestFraction = fraction;
+    if (slope <= kLineSearchRatio * initialSlope) break;
+  }
+  if (bestFraction != lastTried) {
+    // Leave the contributions (and internalForce_) evaluated at the accepted point.
+    Eigen::VectorXd accepted = displacement;
+    addToFree(accepted, du, bestFraction);
+    try {
+      assembleAt(accepted, step, false);
+    } catch (const StepFailure&) {
+      // the next iteration's assembly reports it
+    }
+  }
+  return bestFraction;
+}
+
+NewtonResult Newton::solve(const NewtonStep& step, const NewtonSpec& spec,
+                           Eigen::VectorXd& displacement) {
+  const DofMap& dofs = problem_.dofMap();
+  const Eigen::Matrix3Xd& reference = problem_.referenceCoordinates();
+  previous_ = reference + Eigen::Map<const Eigen::Matrix3Xd>(displacement.data(), 3,
+                                                            reference.cols());
+  Eigen::VectorXd prescribedTarget(dofs.numPrescribed());
+  problem_.prescribedValues(step.time, prescribedTarget);
+  problem_.externalForces(step.time, externalForce_);
+  const Eigen::VectorXd prescribedIncrement =
+      prescribedTarget - gather(displacement, dofs.prescribedDofs());
+  auto applyPrescribed = [&] {
+    for (int p = 0; p < dofs.numPrescribed(); ++p) {
+      displacement[dofs.prescribedDofs()[p]] = prescribedTarget[p];
+    }
+  };
+  linear_.beginStep();
+  Norms norms;
+  for (int iteration = 1; iteration <= spec.maxIterations; ++iteration) {
+    Eigen::VectorXd rhs;
+    try {
+      assembleAt(displacement, step, true);
+      rhs = -freeResidual();
+      if (iteration == 1 && dofs.numPrescribed() > 0) {
+        rhs.noalias() -= tangent_.coupling * prescribedIncrement;
+      }
+    } catch (const StepFailure& failure) {
+      return failed(iteration, failure.kind(), failure.what());
+    }
+    norms.residual = rhs.norm();
+    if (iteration == 1) norms.firstResidual = norms.residual;
+    if (!std::isfinite(norms.residual)) {
+      return failed(iteration, FailureKind::NotFinite, "residual is not finite");
+    }
+    const double forceScale = std::max(internalForce_.norm(), externalForce_.norm());
+    const bool atRoundoff = norms.residual <= kRoundoffResidual * forceScale;
+    const bool residualMet =
+        iteration > 1 && norms.relativeResidual() <= spec.residualTolerance;
+    if (atRoundoff || (usesResidual(spec.criterion) && residualMet)) {
+      if (iteration == 1) applyPrescribed();
+      return converged(std::max(iteration - 1, 1));
+    }
+    if (iteration > 1 && norms.relativeResidual() > spec.divergenceFactor) {
+      return failed(iteration, FailureKind::Diverged,
+                    fmt::format("residual grew to {:.3g} times its first value at iteration {}",
+                                norms.relativeResidual(), iteration));
+    }
+    Eigen::VectorXd du;
+    try {
+      linear_.factorize(tangent_);
+      du = linear_.solve(rhs);
+    } catch (const StepFailure& failure) {
+      return failed(iteration, failure.kind(), failure.what());
+    }
+    norms.energy = std::abs(du.dot(rhs));
+    if (iteration == 1) norms.firstEnergy = norms.energy;
+    const double fraction =
+        (spec.lineSearch && iteration > 1) ? lineSearch(step, du, rhs, displacement) : 1.0;
+    addToFree(displacement, du, fraction);
+    if (iteration == 1) applyPrescribed();
+
+    observer_.iteration({step.step, step.attempt, iteration, step.time, norms.residual,
+                         norms.relativeResidual(), norms.energy, norms.relativeEnergy(),
+                         secondsSince(runStart_)});
+    if (convergedAfterSolve(spec, norms, iteration)) return converged(iteration);
+    if (observer_.stopRequested()) {
+      return {NewtonResult::Status::Interrupted, iteration, FailureKind::Diverged, "interrupted"};
+    }
+  }
+  return failed(spec.maxIterations, FailureKind::Diverged,
+                fmt::format("no convergence in {} iterations (relative residual {:.3g}, relative "
+                            "energy {:.3g})",
+                            spec.maxIterations, norms.relativeResidual(), norms.relativeEnergy()));
+}
+
+}  // namespace cc

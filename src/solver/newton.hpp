@@ -1,0 +1,102 @@
+// Newton's method for one load step, FEAP style: the first iteration carries the prescribed
+// displacement increment as a linear predictor (K_fp du_p on the right-hand side), every
+// iteration logs the residual and energy norms, convergence follows NewtonSpec::criterion.
+//
+// Iterations per step = number of linear solves (FEAP's count of TANG,,1 cycles):
+//  - Energy: after solve k, |du_k . rhs_k| <= energyTolerance |du_1 . rhs_1| -> k iterations.
+//    A linear problem therefore takes 2 (the second solve confirms), exactly as in FEAP.
+//  - Residual: at the start of iteration k >= 2, ||rhs_k|| <= residualTolerance ||rhs_1|| ->
+//    k - 1 iterations (no solve is needed to see it). A linear problem takes 1.
+//  - Either: whichever of the two tests above passes first.
+//  - Both: after solve k, the energy test and ||rhs_k|| <= residualTolerance ||rhs_1|| (both of
+//    iteration k) -> k iterations.
+//  - Always: a residual at round-off level of the forces (||rhs_k|| <= kRoundoffResidual *
+//    max(||f_int||, ||f_ext||)) cannot be reduced further and counts as converged with
+//    max(k - 1, 1) iterations; in particular a step that starts in equilibrium takes 1.
+// rhs_1 = -(R_f + K_fp du_p), rhs_k = -R_f for k >= 2, R = f_int - f_ext.
+#pragma once
+
+#include <Eigen/Core>
+#include <chrono>
+#include <string>
+
+#include "deck/problem_spec.hpp"
+#include "solver/nonlinear_problem.hpp"
+#include "solver/tangent_solver.hpp"
+
+namespace cc {
+
+// ||rhs|| below this multiple of max(||f_int||, ||f_ext||) is round-off of the assembled sums
+// (machine epsilon times the growth of summing many element contributions per dof).
+inline constexpr double kRoundoffResidual = 1e3 * 2.220446049250313e-16;
+
+// Line search (NewtonSpec::lineSearch, iterations k >= 2): accept the step fraction s when
+// |du . R(u + s du)| <= kLineSearchRatio |du . R(u)|, halving s at most kLineSearchHalvings
+// times; otherwise take the fraction with the smallest |du . R|.
+inline constexpr double kLineSearchRatio = 0.8;
+inline constexpr int kLineSearchHalvings = 4;
+
+struct NewtonStep {
+  int step = 0;             // number the step gets if it converges (1-based)
+  int attempt = 0;          // cut-backs of this step so far
+  double time = 0;          // t_{n+1}
+  double previousTime = 0;  // t_n
+};
+
+struct NewtonResult {
+  enum class Status { Converged, Failed, Interrupted };
+  Status status = Status::Failed;
+  int iterations = 0;        // converged: see the definition above; failed: iteration reached
+  FailureKind failure = FailureKind::Diverged;
+  std::string message;       // why it failed
+};
+
+// Work counters of a run (benchmarks, progress line).
+struct SolverStatistics {
+  int steps = 0;
+  int iterations = 0;
+  int cutbacks = 0;
+  int assemblies = 0;  // calls of NonlinearProblem::assemble (tangent and residual-only)
+  double assemblySeconds = 0;
+  int choleskyFallbacks = 0;
+  LinearSolverStatistics linear;
+};
+
+class Newton {
+ public:
+  using Clock = std::chrono::steady_clock;
+  Newton(NonlinearProblem& problem, StepObserver& observer, Clock::time_point runStart);
+
+  // `displacement` (3 * numNodes) holds the converged state at step.previousTime on entry and
+  // the solution at step.time when converged; otherwise it is left in between (the caller
+  // restores it and calls problem.restoreStep()).
+  NewtonResult solve(const NewtonStep& step, const NewtonSpec& spec,
+                     Eigen::VectorXd& displacement);
+
+  // Internal force of the last assembly (the converged one, see the header comment).
+  const Eigen::VectorXd& internalForce() const { return internalForce_; }
+  int assemblies() const { return assemblies_; }
+  double assemblySeconds() const { return assemblySeconds_; }
+  const TangentSolver& linearSolver() const { return linear_; }
+
+ private:
+  void assembleAt(const Eigen::VectorXd& displacement, const NewtonStep& step, bool withTangent);
+  Eigen::VectorXd freeResidual() const;  // R_f = f_int - f_ext on free dofs
+  double lineSearch(const NewtonStep& step, const Eigen::VectorXd& du,
+                    const Eigen::VectorXd& rhs, Eigen::VectorXd& displacement);
+  void addToFree(Eigen::VectorXd& displacement, const Eigen::VectorXd& du, double scale) const;
+
+  NonlinearProblem& problem_;
+  StepObserver& observer_;
+  Clock::time_point runStart_;
+  TangentSolver linear_;
+  SystemMatrices tangent_;
+  Eigen::VectorXd internalForce_;
+  Eigen::VectorXd externalForce_;
+  Eigen::Matrix3Xd current_;
+  Eigen::Matrix3Xd previous_;
+  int assemblies_ = 0;
+  double assemblySeconds_ = 0;
+};
+
+}  // namespace cc

@@ -1,0 +1,120 @@
+// UMFPACK sparse LU behind the LinearSolver interface (unsymmetric tangents of frictional
+// sliding, and symmetric indefinite ones that CHOLMOD rejects).
+#include <umfpack.h>
+
+#include <chrono>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "common/errors.hpp"
+#include "solver/linear_solver.hpp"
+
+namespace cc {
+
+namespace {
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+class UmfpackSolver final : public LinearSolver {
+ public:
+  UmfpackSolver() { umfpack_di_defaults(control_); }
+  ~UmfpackSolver() override { release(); }
+  UmfpackSolver(const UmfpackSolver&) = delete;
+  UmfpackSolver& operator=(const UmfpackSolver&) = delete;
+
+  std::string name() const override { return "UMFPACK"; }
+
+  void analyzePattern(const SparseMatrix& matrix) override {
+    checkShape(matrix);
+    const auto start = std::chrono::steady_clock::now();
+    release();
+    const int status = umfpack_di_symbolic(rows(matrix), rows(matrix), matrix.outerIndexPtr(),
+                                           matrix.innerIndexPtr(), matrix.valuePtr(), &symbolic_,
+                                           control_, info_);
+    if (status != UMFPACK_OK) {
+      throw std::runtime_error(fmt::format("UMFPACK analysis failed (status {})", status));
+    }
+    size_ = rows(matrix);
+    ++statistics_.analyses;
+    statistics_.analysisSeconds += secondsSince(start);
+  }
+
+  void factorize(const SparseMatrix& matrix) override {
+    checkShape(matrix);
+    if (!symbolic_ || rows(matrix) != size_) {
+      throw std::logic_error("UMFPACK: factorize() before analyzePattern() of this pattern");
+    }
+    const auto start = std::chrono::steady_clock::now();
+    ++statistics_.factorizations;
+    if (numeric_) umfpack_di_free_numeric(&numeric_);
+    matrix_ = nullptr;
+    const int status = umfpack_di_numeric(matrix.outerIndexPtr(), matrix.innerIndexPtr(),
+                                          matrix.valuePtr(), symbolic_, &numeric_, control_, info_);
+    statistics_.factorizationSeconds += secondsSince(start);
+    if (status == UMFPACK_WARNING_singular_matrix) {
+      ++statistics_.failedFactorizations;
+      throw StepFailure(FailureKind::SingularSystem,
+                        "UMFPACK: tangent singular (zero pivot; a body free to move as a rigid "
+                        "body, or a missing support?)");
+    }
+    if (status != UMFPACK_OK) {
+      ++statistics_.failedFactorizations;
+      throw std::runtime_error(fmt::format("UMFPACK factorization failed (status {})", status));
+    }
+    // UMFPACK_RCOND is min |U_ii| / max |U_ii| of the scaled factor.
+    const double pivotRatio = info_[UMFPACK_RCOND];
+    if (!(pivotRatio >= kSingularPivotRatio)) {
+      ++statistics_.failedFactorizations;
+      throw StepFailure(FailureKind::SingularSystem,
+                        fmt::format("UMFPACK: tangent numerically singular (smallest/largest "
+                                    "pivot {:.3g})",
+                                    pivotRatio));
+    }
+    matrix_ = &matrix;
+  }
+
+  Eigen::VectorXd solve(const Eigen::VectorXd& rhs) override {
+    if (!numeric_ || !matrix_) throw std::logic_error("UMFPACK: solve() without factorization");
+    const auto start = std::chrono::steady_clock::now();
+    Eigen::VectorXd solution(rhs.size());
+    const int status =
+        umfpack_di_solve(UMFPACK_A, matrix_->outerIndexPtr(), matrix_->innerIndexPtr(),
+                         matrix_->valuePtr(), solution.data(), rhs.data(), numeric_, control_,
+                         info_);
+    if (status != UMFPACK_OK) {
+      throw std::runtime_error(fmt::format("UMFPACK solve failed (status {})", status));
+    }
+    ++statistics_.solves;
+    statistics_.solveSeconds += secondsSince(start);
+    return solution;
+  }
+
+ private:
+  static int rows(const SparseMatrix& matrix) { return static_cast<int>(matrix.rows()); }
+  static void checkShape(const SparseMatrix& matrix) {
+    if (!matrix.isCompressed() || matrix.rows() != matrix.cols()) {
+      throw std::invalid_argument("UMFPACK: matrix must be square and compressed");
+    }
+  }
+  void release() {
+    if (numeric_) umfpack_di_free_numeric(&numeric_);
+    if (symbolic_) umfpack_di_free_symbolic(&symbolic_);
+    matrix_ = nullptr;
+  }
+
+  double control_[UMFPACK_CONTROL];
+  double info_[UMFPACK_INFO];
+  void* symbolic_ = nullptr;
+  void* numeric_ = nullptr;
+  const SparseMatrix* matrix_ = nullptr;
+  int size_ = -1;
+};
+
+}  // namespace
+
+std::unique_ptr<LinearSolver> makeUmfpackSolver() { return std::make_unique<UmfpackSolver>(); }
+
+}  // namespace cc
