@@ -1,0 +1,93 @@
+// One contact point: its kinematics (master frame, slave point, gap, slip, integration weight),
+// its response under the contact law, and its force on the item's nodes from the weak form
+// eq. (60): delta W_c = (N delta g + T_j delta xi^j) ds with delta g and delta xi^j of eqs.
+// (58), (61). All templated on the scalar type: double for the residual, an AD scalar for the
+// exact tangent. The contact kinds (NTS, STS, STAS) differ only in how they fill the kinematics.
+//
+// Sign convention (DESIGN.md): g = (r_s - rho) . n <= 0 in contact, N = eps_N <g> <= 0. T is the
+// tangential traction acting on the slave (opposing its slip, eq. (66)). The force added to the
+// global internal-force vector is A^T (N n - T) w, where A maps the item's dofs to
+// delta r_s - delta rho (slave block N_s, master block -N_m(xi)), so that both penalty springs
+// have positive stiffness.
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+
+#include "contact/friction_law.hpp"
+#include "contact/geometry.hpp"
+
+namespace cc::contact {
+
+// Where the nodes of one contact item sit in its node list (local indices), and the slave
+// side's fixed shape-function values at the slave point.
+struct PointLayout {
+  SegmentType masterType = SegmentType::Quad4;
+  int masterCount = 0;
+  std::array<int, 9> masterLocal{};
+  int slaveCount = 0;  // NTS: 1, STS: 4 or 9, STAS: 0 (rigid slave)
+  std::array<int, 9> slaveLocal{};
+  std::array<double, 9> slaveShape{};
+  int previousMasterCount = 0;  // nodes of the segment of the last converged projection, when
+  std::array<int, 9> previousMasterLocal{};  // it differs from the current one (eq. (47))
+  SegmentType previousMasterType = SegmentType::Quad4;
+  int nodeCount = 0;            // size of the item's node list
+};
+
+template <class Scalar>
+struct PointKinematics {
+  SurfaceFrame<Scalar> frame;            // master frame at the contact point
+  std::array<Scalar, 9> masterShape{};   // N_m(xi) (xi may depend on the nodes)
+  Vec3<Scalar> slavePoint;               // r_s
+  Scalar gap;                            // g, eq. (27) (STAS: xi^3 of eq. (117))
+  Vec3<Scalar> slip;                     // Delta rho, eq. (47) or -u of eq. (48)
+  Scalar weight;                         // ds times the quadrature weight
+};
+
+template <class Scalar>
+struct PointResponse {
+  Scalar normal = Scalar(0.0);          // N
+  TangentialTraction<Scalar> tangential;
+  PointState state = PointState::Open;
+  bool frictional = false;
+};
+
+// Normal penalty, trial step and return mapping at one point, Table 1 / Table 2.
+template <class Scalar>
+PointResponse<Scalar> pointResponse(const PointKinematics<Scalar>& kin,
+                                    const Eigen::Vector3d& previousTraction,
+                                    const LawParameters& law) {
+  PointResponse<Scalar> response;
+  if (kin.gap > 0) return response;  // open: g > 0, no traction (Table 1, loop 3)
+  response.normal = normalTraction(kin.gap, law.penaltyNormal);
+  response.state = PointState::Stick;
+  response.tangential.covariant.setZero();
+  response.tangential.trialCovariant.setZero();
+  response.tangential.trialNorm = Scalar(0.0);
+  response.tangential.vector.setZero();
+  if (law.friction > 0) {
+    response.frictional = true;
+    const auto trial = trialTraction(kin.frame, previousTraction, kin.slip, law.penaltyTangential);
+    response.tangential = returnMapping(kin.frame, trial, response.normal, law.friction);
+    response.state = response.tangential.state;
+  }
+  return response;
+}
+
+// Force on the item's dofs, A^T (N n - T) w (node-major, 3 per local node).
+template <class Scalar>
+void pointForce(const PointKinematics<Scalar>& kin, const PointResponse<Scalar>& response,
+                const PointLayout& layout, Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& force) {
+  force.setZero(3 * layout.nodeCount);
+  if (response.state == PointState::Open) return;
+  const Vec3<Scalar> traction =
+      (response.normal * kin.frame.normal - response.tangential.vector) * kin.weight;
+  for (int a = 0; a < layout.slaveCount; ++a) {
+    force.template segment<3>(3 * layout.slaveLocal[a]) += layout.slaveShape[a] * traction;
+  }
+  for (int b = 0; b < layout.masterCount; ++b) {
+    force.template segment<3>(3 * layout.masterLocal[b]) -= kin.masterShape[b] * traction;
+  }
+}
+
+}  // namespace cc::contact

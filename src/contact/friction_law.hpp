@@ -1,0 +1,84 @@
+// Contact law at one point, section 3.2: penalty normal traction, eqs. (62)-(63); trial
+// tangential traction by parallel translation plus the penalty increment, eqs. (51), (76)-(78);
+// Coulomb return mapping, eq. (79). Pure functions of gap, slip, metric and history, templated
+// on the scalar type so the exact tangent can differentiate them.
+#pragma once
+
+#include <Eigen/Core>
+#include <cmath>
+
+#include "contact/geometry.hpp"
+
+namespace cc::contact {
+
+enum class PointState { Open = 0, Stick = 1, Slip = 2 };
+
+struct LawParameters {
+  double penaltyNormal = 0;      // eps_N
+  double penaltyTangential = 0;  // eps_T
+  double friction = 0;           // mu
+};
+
+// Eqs. (62)-(63): N = eps_N <g>, Macaulay bracket <g> = g for g <= 0, 0 otherwise. N <= 0.
+template <class Scalar>
+Scalar normalTraction(const Scalar& gap, double penalty) {
+  return gap <= 0 ? Scalar(penalty * gap) : Scalar(0.0);
+}
+
+template <class Scalar>
+struct TangentialTraction {
+  Eigen::Matrix<Scalar, 2, 1> trialCovariant;  // (T^tr)_i, eq. (77)
+  Scalar trialNorm;                            // ||T^tr||, eq. (77)
+  Eigen::Matrix<Scalar, 2, 1> covariant;       // T_i after the return mapping, eq. (79)
+  Vec3<Scalar> vector;                         // T = T_i rho^i (Cartesian)
+  PointState state = PointState::Stick;
+};
+
+// Trial step, eq. (77): the traction of the last converged step, a Cartesian vector in its
+// tangent plane, is translated in parallel to the current plane, eq. (51):
+// T_l^(n+1) = T^(n) . rho_l^(n+1); the penalty increment is -eps_T Delta xi^j a_ij =
+// -eps_T (Delta rho . rho_i), eqs. (76), (78), with the slip Delta rho of eq. (47) (NTS/STS) or
+// Delta rho = -u of eq. (48) (STAS).
+template <class Scalar>
+Eigen::Matrix<Scalar, 2, 1> trialTraction(const SurfaceFrame<Scalar>& frame,
+                                          const Eigen::Vector3d& previousTraction,
+                                          const Vec3<Scalar>& slip, double penaltyTangential) {
+  Eigen::Matrix<Scalar, 2, 1> trial;
+  for (int i = 0; i < 2; ++i) {
+    trial[i] = frame.rhoCov[i].dot(previousTraction.cast<Scalar>()) -
+               penaltyTangential * slip.dot(frame.rhoCov[i]);
+  }
+  return trial;
+}
+
+// Eq. (65): ||T|| = sqrt(T_i T_j a^ij).
+template <class Scalar>
+Scalar tractionNorm(const Eigen::Matrix<Scalar, 2, 1>& covariant,
+                    const Mat2<Scalar>& inverseMetric) {
+  using std::sqrt;
+  return sqrt(covariant.dot(inverseMetric * covariant));
+}
+
+// Return mapping, eq. (79): stick if Phi^tr = ||T^tr|| - mu |N| <= 0, otherwise the trial
+// traction is scaled back onto the Coulomb cone.
+template <class Scalar>
+TangentialTraction<Scalar> returnMapping(const SurfaceFrame<Scalar>& frame,
+                                         const Eigen::Matrix<Scalar, 2, 1>& trial,
+                                         const Scalar& normal, double friction) {
+  using std::abs;
+  TangentialTraction<Scalar> result;
+  result.trialCovariant = trial;
+  result.trialNorm = tractionNorm(trial, frame.inverseMetric);
+  const Scalar limit = friction * abs(normal);
+  if (result.trialNorm <= limit) {
+    result.state = PointState::Stick;
+    result.covariant = trial;
+  } else {
+    result.state = PointState::Slip;
+    result.covariant = trial * (limit / result.trialNorm);
+  }
+  result.vector = result.covariant[0] * frame.rhoContra[0] + result.covariant[1] * frame.rhoContra[1];
+  return result;
+}
+
+}  // namespace cc::contact

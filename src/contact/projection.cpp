@@ -1,0 +1,66 @@
+// Safeguarded closest-point projection onto a master segment, eqs. (21)-(25).
+#include "contact/projection.hpp"
+
+#include <Eigen/LU>
+#include <cmath>
+
+namespace cc::contact {
+
+namespace {
+
+// Gradient g_i = rho_i . (r - rho) (= -F'/2, eq. (24)) and Hessian H_ij = a_ij - rho_ij . (r -
+// rho) (= F''/2, eq. (25)) of the squared distance at xi.
+void distanceDerivatives(SegmentType type, const NodeMatrix<double>& nodes,
+                         const Eigen::Vector3d& point, const Eigen::Vector2d& xi,
+                         Eigen::Vector2d& gradient, Eigen::Matrix2d& hessian,
+                         Eigen::Matrix2d& metric) {
+  const SurfaceShape<double> shape = surfaceShape(type, xi[0], xi[1]);
+  Eigen::Vector3d rho;
+  std::array<Eigen::Vector3d, 2> rhoCov;
+  std::array<Eigen::Vector3d, 3> rhoSecond;
+  interpolateSurface(nodes, shape, rho, rhoCov, &rhoSecond);
+  const Eigen::Vector3d distance = point - rho;
+  metric = covariantMetric(rhoCov);
+  for (int i = 0; i < 2; ++i) {
+    gradient[i] = rhoCov[i].dot(distance);
+    for (int j = 0; j < 2; ++j) {
+      hessian(i, j) = metric(i, j) - rhoSecond[symmetricIndex(i, j)].dot(distance);
+    }
+  }
+}
+
+bool positiveDefinite(const Eigen::Matrix2d& m) {
+  return m(0, 0) > 0 && m.determinant() > 0;
+}
+
+}  // namespace
+
+ProjectionResult closestPointProjection(SegmentType type, const NodeMatrix<double>& nodes,
+                                        const Eigen::Vector3d& point,
+                                        const Eigen::Vector2d& initialGuess,
+                                        const ProjectionOptions& options) {
+  ProjectionResult result;
+  Eigen::Vector2d xi = initialGuess;
+  Eigen::Vector2d gradient;
+  Eigen::Matrix2d hessian, metric;
+  for (int iteration = 1; iteration <= options.maxIterations; ++iteration) {
+    distanceDerivatives(type, nodes, point, xi, gradient, hessian, metric);
+    // Newton step of eq. (23); where the full Hessian is not positive definite (far from a
+    // curved segment) fall back to the Gauss-Newton step with the metric alone.
+    const Eigen::Matrix2d& system = positiveDefinite(hessian) ? hessian : metric;
+    Eigen::Vector2d step = system.inverse() * gradient;
+    if (!step.allFinite()) return result;
+    const double length = step.norm();
+    if (length > options.maxStep) step *= options.maxStep / length;
+    xi = (xi + step).cwiseMax(-options.parameterBound).cwiseMin(options.parameterBound);
+    result.iterations = iteration;
+    if (length < options.tolerance) {
+      result.converged = true;
+      break;
+    }
+  }
+  result.xi = xi;
+  return result;
+}
+
+}  // namespace cc::contact

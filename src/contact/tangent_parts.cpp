@@ -1,0 +1,178 @@
+// The parts of the paper's contact tangent (Tables 1 and 2), assembled from A^T u vectors.
+#include "contact/tangent_parts.hpp"
+
+namespace cc::contact {
+
+namespace {
+
+using Eigen::MatrixXd;
+using Eigen::VectorXd;
+
+// A^T u: slave blocks N_s u, master blocks -N_m u (A maps dofs to delta r_s - delta rho).
+VectorXd positionTranspose(const PointKinematics<double>& kin, const PointLayout& layout,
+                           const Eigen::Vector3d& u) {
+  VectorXd v = VectorXd::Zero(3 * layout.nodeCount);
+  for (int a = 0; a < layout.slaveCount; ++a) {
+    v.segment<3>(3 * layout.slaveLocal[a]) += layout.slaveShape[a] * u;
+  }
+  for (int b = 0; b < layout.masterCount; ++b) {
+    v.segment<3>(3 * layout.masterLocal[b]) -= kin.masterShape[b] * u;
+  }
+  return v;
+}
+
+// A_j^T u: master blocks N_m,j u (A_j maps dofs to delta rho_,j).
+VectorXd derivativeTranspose(const SurfaceShape<double>& shape, const PointLayout& layout, int j,
+                             const Eigen::Vector3d& u) {
+  VectorXd v = VectorXd::Zero(3 * layout.nodeCount);
+  for (int b = 0; b < layout.masterCount; ++b) {
+    v.segment<3>(3 * layout.masterLocal[b]) += shape.first[b][j] * u;
+  }
+  return v;
+}
+
+// K += scale (a b^T + b a^T)
+void addSymmetricPair(MatrixXd& K, double scale, const VectorXd& a, const VectorXd& b) {
+  K.noalias() += scale * (a * b.transpose() + b * a.transpose());
+}
+
+}  // namespace
+
+TangentContext makeTangentContext(const PointKinematics<double>& kin, const PointLayout& layout,
+                                  const Eigen::Vector2d& xi) {
+  const SurfaceFrame<double>& f = kin.frame;
+  const SurfaceShape<double> shape = surfaceShape(layout.masterType, xi[0], xi[1]);
+  TangentContext c;
+  c.frame = &kin.frame;
+  c.weight = kin.weight;
+  c.An = positionTranspose(kin, layout, f.normal);
+  for (int i = 0; i < 2; ++i) {
+    c.Arho[i] = positionTranspose(kin, layout, f.rhoCov[i]);
+    c.ArhoContra[i] = positionTranspose(kin, layout, f.rhoContra[i]);
+    c.Ajn[i] = derivativeTranspose(shape, layout, i, f.normal);
+  }
+  for (int j = 0; j < 2; ++j) {
+    for (int i = 0; i < 2; ++i) c.Ajrho[j][i] = derivativeTranspose(shape, layout, j, f.rhoCov[i]);
+  }
+  return c;
+}
+
+// Eq. (83): eps_N (delta r_s - delta rho) . (n x n) (v_s - v).
+void normalMain(const TangentContext& c, double penaltyNormal, MatrixXd& K) {
+  K.noalias() += (c.weight * penaltyNormal) * c.An * c.An.transpose();
+}
+
+// Eq. (83a): -eps_N g [delta rho_,j . a^ij (n x rho_i)(v_s - v) + (.) . a^ij (rho_j x n) v_,i].
+void normalRotational(const TangentContext& c, double penaltyNormal, double gap, MatrixXd& K) {
+  const Eigen::Matrix2d& aInv = c.frame->inverseMetric;
+  for (int i = 0; i < 2; ++i) {
+    for (int j = 0; j < 2; ++j) {
+      K.noalias() -= (c.weight * penaltyNormal * gap * aInv(i, j)) *
+                     (c.Ajn[j] * c.Arho[i].transpose() + c.Arho[j] * c.Ajn[i].transpose());
+    }
+  }
+}
+
+// Eq. (83b): -eps_N g (delta r_s - delta rho) . h^ij (rho_i x rho_j) (v_s - v).
+void normalCurvature(const TangentContext& c, double penaltyNormal, double gap, MatrixXd& K) {
+  const Eigen::Matrix2d& hContra = c.frame->curvatureContra;
+  for (int i = 0; i < 2; ++i) {
+    for (int j = 0; j < 2; ++j) {
+      K.noalias() -=
+          (c.weight * penaltyNormal * gap * hContra(i, j)) * c.Arho[i] * c.Arho[j].transpose();
+    }
+  }
+}
+
+// Eq. (100), sign changed (see header): eps_T (delta r_s - delta rho) a^ij (rho_i x rho_j)(v_s-v).
+void stickMain(const TangentContext& c, double penaltyTangential, MatrixXd& K) {
+  for (int i = 0; i < 2; ++i) {
+    K.noalias() += (c.weight * penaltyTangential) * c.ArhoContra[i] * c.Arho[i].transpose();
+  }
+}
+
+// Eqs. (100a)/(107c), sign changed: T_i [(.) a^il a^jk rho_k x rho_l v_j + delta rho_,j a^ik a^jl
+// rho_k x rho_l (v_s - v)] = sum_j [A^T rho^j (A_j^T T)^T + (A_j^T T)(A^T rho^j)^T].
+void tractionRotational(const TangentContext& c, const Eigen::Vector2d& traction, MatrixXd& K) {
+  const Eigen::Vector2d tractionContra = c.frame->inverseMetric * traction;  // T^l = a^il T_i
+  for (int j = 0; j < 2; ++j) {
+    const VectorXd AjT = tractionContra[0] * c.Ajrho[j][0] + tractionContra[1] * c.Ajrho[j][1];
+    addSymmetricPair(K, c.weight, c.ArhoContra[j], AjT);
+  }
+}
+
+// Eqs. (100b)/(107d), sign changed: -T_i h^ij (.) . (rho_j x n + n x rho_j) (v_s - v).
+void tractionCurvature(const TangentContext& c, const Eigen::Vector2d& traction, MatrixXd& K) {
+  const Eigen::Vector2d weights = c.frame->curvatureContra * traction;  // T_i h^ij
+  for (int j = 0; j < 2; ++j) addSymmetricPair(K, -c.weight * weights[j], c.Arho[j], c.An);
+}
+
+// Eqs. (107), (107a), (107b), sign changed, with the trial traction's direction e and norm:
+// mu eps_N (A^T e)(A^T n)^T + eps_T mu |N| / ||T^tr|| [a^ij A^T rho_i (A^T rho_j)^T - A^T e (A^T e)^T].
+void slideConstitutive(const TangentContext& c, const LawParameters& law, double normal,
+                       const TangentialTraction<double>& tangential, MatrixXd& K) {
+  const Eigen::Vector2d direction = tangential.trialCovariant / tangential.trialNorm;
+  const VectorXd Ae = direction[0] * c.ArhoContra[0] + direction[1] * c.ArhoContra[1];
+  K.noalias() += (c.weight * law.friction * law.penaltyNormal) * Ae * c.An.transpose();
+  const double scale =
+      c.weight * law.penaltyTangential * law.friction * std::abs(normal) / tangential.trialNorm;
+  for (int i = 0; i < 2; ++i) K.noalias() += scale * c.ArhoContra[i] * c.Arho[i].transpose();
+  K.noalias() -= scale * Ae * Ae.transpose();
+}
+
+// Eq. (107e), sign changed: -mu |N| / ||T^tr|| (A^T e) [-e^j T_m Gamma^m_jn A^T rho^n +
+// e^j T_m h_j^m A^T n]^T, with e^j = e_l a^jl and T the trial traction.
+void slideUnsymmetricCurvature(const TangentContext& c, const LawParameters& law, double normal,
+                               const TangentialTraction<double>& tangential, MatrixXd& K) {
+  const SurfaceFrame<double>& f = *c.frame;
+  const Eigen::Vector2d direction = tangential.trialCovariant / tangential.trialNorm;
+  const Eigen::Vector2d directionContra = f.inverseMetric * direction;
+  const Eigen::Vector2d& trial = tangential.trialCovariant;
+  Eigen::Vector2d christoffelWeights = Eigen::Vector2d::Zero();  // e^j T_m Gamma^m_jn
+  double curvatureWeight = 0;                                     // e^j T_m h_j^m
+  for (int j = 0; j < 2; ++j) {
+    for (int m = 0; m < 2; ++m) {
+      for (int n = 0; n < 2; ++n) {
+        christoffelWeights[n] += directionContra[j] * trial[m] * f.christoffel[m](j, n);
+      }
+      curvatureWeight += directionContra[j] * trial[m] * f.curvatureMixed(j, m);
+    }
+  }
+  const VectorXd Ae = direction[0] * c.ArhoContra[0] + direction[1] * c.ArhoContra[1];
+  const VectorXd right = -christoffelWeights[0] * c.ArhoContra[0] -
+                         christoffelWeights[1] * c.ArhoContra[1] + curvatureWeight * c.An;
+  const double scale = c.weight * law.friction * std::abs(normal) / tangential.trialNorm;
+  K.noalias() -= scale * Ae * right.transpose();
+}
+
+void paperTangent(const PointKinematics<double>& kin, const PointResponse<double>& response,
+                  const PointLayout& layout, const Eigen::Vector2d& xi, const LawParameters& law,
+                  const TangentParts& parts, MatrixXd& K) {
+  K.setZero(3 * layout.nodeCount, 3 * layout.nodeCount);
+  if (response.state == PointState::Open) return;
+  const TangentContext c = makeTangentContext(kin, layout, xi);
+  if (parts.normalMain) normalMain(c, law.penaltyNormal, K);
+  if (parts.normalRotational) normalRotational(c, law.penaltyNormal, kin.gap, K);
+  if (parts.normalCurvature) normalCurvature(c, law.penaltyNormal, kin.gap, K);
+  if (!response.frictional) return;
+  const Eigen::Vector2d& traction = response.tangential.covariant;
+  if (response.state == PointState::Stick) {
+    if (parts.stickMain) stickMain(c, law.penaltyTangential, K);
+    if (parts.stickRotational) tractionRotational(c, traction, K);
+    if (parts.stickCurvature) tractionCurvature(c, traction, K);
+    return;
+  }
+  if (parts.slideConstitutive) slideConstitutive(c, law, response.normal, response.tangential, K);
+  if (parts.slideRotational) tractionRotational(c, traction, K);
+  if (parts.slideCurvature) tractionCurvature(c, traction, K);
+  if (parts.slideUnsymmetricCurvature) {
+    slideUnsymmetricCurvature(c, law, response.normal, response.tangential, K);
+  }
+}
+
+bool tangentSymmetric(PointState state, const TangentParts& parts) {
+  if (state != PointState::Slip) return true;
+  return !parts.slideConstitutive && !parts.slideUnsymmetricCurvature;
+}
+
+}  // namespace cc::contact

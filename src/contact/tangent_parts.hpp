@@ -1,0 +1,59 @@
+// The parts of the paper's contact tangent, Tables 1 and 2, each its own small function:
+// normal main (83), rotational (83a), curvature (83b); stick main (100), rotational (100a),
+// curvature (100b); slide constitutive (107, 107a, 107b), rotational (107c), curvature (107d),
+// unsymmetric curvature (107e). A per-pair TangentParts flag set selects which are assembled.
+//
+// Every part is a bilinear form in (delta r_s - delta rho) = A delta x, delta rho_,j = A_j
+// delta x and the same for the increment, so it is assembled from the vectors A^T u and A_j^T u
+// (u = n, rho_i, rho^i) of TangentContext. The paper writes D(delta W_c) with N <= 0 in the
+// normal part and T as the traction on the slave in the tangential parts; with our residual
+// A^T (N n - T) w the normal parts keep the paper's sign and the tangential parts change it.
+#pragma once
+
+#include <Eigen/Core>
+
+#include "contact/contact_point.hpp"
+#include "deck/problem_spec.hpp"
+
+namespace cc::contact {
+
+struct TangentContext {
+  const SurfaceFrame<double>* frame = nullptr;
+  double weight = 0;
+  Eigen::VectorXd An;                                // A^T n
+  std::array<Eigen::VectorXd, 2> Arho;               // A^T rho_i
+  std::array<Eigen::VectorXd, 2> ArhoContra;         // A^T rho^i
+  std::array<Eigen::VectorXd, 2> Ajn;                // A_j^T n
+  std::array<std::array<Eigen::VectorXd, 2>, 2> Ajrho;  // [j][i] = A_j^T rho_i
+};
+
+TangentContext makeTangentContext(const PointKinematics<double>& kin, const PointLayout& layout,
+                                  const Eigen::Vector2d& xi);
+
+void normalMain(const TangentContext& c, double penaltyNormal, Eigen::MatrixXd& K);
+void normalRotational(const TangentContext& c, double penaltyNormal, double gap,
+                      Eigen::MatrixXd& K);
+void normalCurvature(const TangentContext& c, double penaltyNormal, double gap,
+                     Eigen::MatrixXd& K);
+void stickMain(const TangentContext& c, double penaltyTangential, Eigen::MatrixXd& K);
+// Rotational and curvature parts of delta xi^i's linearization, eq. (98)-(98a), weighted by the
+// traction T_i: eqs. (100a)/(100b) with the stick traction, (107c)/(107d) with the slide one.
+void tractionRotational(const TangentContext& c, const Eigen::Vector2d& traction,
+                        Eigen::MatrixXd& K);
+void tractionCurvature(const TangentContext& c, const Eigen::Vector2d& traction,
+                       Eigen::MatrixXd& K);
+void slideConstitutive(const TangentContext& c, const LawParameters& law, double normal,
+                       const TangentialTraction<double>& tangential, Eigen::MatrixXd& K);
+void slideUnsymmetricCurvature(const TangentContext& c, const LawParameters& law, double normal,
+                               const TangentialTraction<double>& tangential, Eigen::MatrixXd& K);
+
+// The paper's tangent of one point with the selected parts; K is sized and zeroed here.
+void paperTangent(const PointKinematics<double>& kin, const PointResponse<double>& response,
+                  const PointLayout& layout, const Eigen::Vector2d& xi, const LawParameters& law,
+                  const TangentParts& parts, Eigen::MatrixXd& K);
+
+// Whether the selected parts give a symmetric matrix in this state (slide (107) and (107e) do
+// not; everything else does).
+bool tangentSymmetric(PointState state, const TangentParts& parts);
+
+}  // namespace cc::contact

@@ -1,0 +1,424 @@
+// Contact point tangents against central finite differences of the contact residual, for each
+// kind (NTS, STS, STAS), in stick and slide, on flat and curved masters (issue 4).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <Eigen/Core>
+#include <unsupported/Eigen/AutoDiff>
+
+#include "contact/point_evaluation.hpp"
+#include "contact/tangent_parts.hpp"
+
+namespace cc::contact {
+namespace {
+
+using Eigen::MatrixXd;
+using Eigen::Vector2d;
+using Eigen::Vector3d;
+using Eigen::VectorXd;
+
+constexpr double kPenaltyNormal = 2.0e3;
+constexpr double kPenaltyTangential = 1.5e3;
+
+// Master segments: a flat distorted Quad4 (h_ij = 0) and a doubly curved Quad9, both with the
+// normal pointing to +z (the slave side).
+NodeMatrix<double> flatQuad4() {
+  NodeMatrix<double> nodes(3, 4);
+  nodes << -1.0, 1.1, 0.9, -1.2,  //
+      -1.0, -0.9, 1.1, 0.8,       //
+      0, 0, 0, 0;
+  return nodes;
+}
+
+NodeMatrix<double> curvedQuad9() {
+  NodeMatrix<double> nodes(3, 9);
+  const double corner[9][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}, {0, -1},
+                               {1, 0},   {0, 1},  {-1, 0}, {0, 0}};
+  for (int k = 0; k < 9; ++k) {
+    const double x = 1.2 * corner[k][0] + 0.1 * corner[k][1];
+    const double y = 0.9 * corner[k][1];
+    nodes.col(k) << x, y, -0.12 * x * x - 0.08 * y * y + 0.03 * x * y;
+  }
+  return nodes;
+}
+
+// A slave Quad4 segment facing the master (normal -z), slightly penetrating it.
+NodeMatrix<double> slaveQuad4(double depth) {
+  NodeMatrix<double> nodes(3, 4);
+  nodes << -0.5, -0.6, 0.45, 0.55,  //
+      -0.4, 0.5, 0.55, -0.45,       //
+      -depth, -depth + 0.002, -depth - 0.001, -depth + 0.001;
+  return nodes;
+}
+
+struct PointCase {
+  PointSetup setup;
+  NodeMatrix<double> nodes;
+};
+
+// Master nodes are placed first in the item, then the slave nodes.
+PointLayout makeLayout(SegmentType masterType, int slaveCount) {
+  PointLayout layout;
+  layout.masterType = masterType;
+  layout.masterCount = segmentNodes(masterType);
+  for (int k = 0; k < layout.masterCount; ++k) layout.masterLocal[k] = k;
+  layout.slaveCount = slaveCount;
+  for (int a = 0; a < slaveCount; ++a) layout.slaveLocal[a] = layout.masterCount + a;
+  layout.nodeCount = layout.masterCount + slaveCount;
+  return layout;
+}
+
+// History of a point that was at `previousXi` with traction `traction` (a tangent vector).
+PointHistory historyWith(const Vector2d& previousXi, const Vector3d& traction) {
+  PointHistory h;
+  h.projected = true;
+  h.xi = previousXi;
+  h.traction = traction;
+  h.state = PointState::Stick;
+  return h;
+}
+
+LawParameters law(double friction) { return {kPenaltyNormal, kPenaltyTangential, friction}; }
+
+// NTS: one slave node at `slavePoint` against `master`; slip `slipScale` times a fixed
+// direction in the parameter plane; previous traction of magnitude `traction`.
+PointCase nodeToSegment(const NodeMatrix<double>& master, SegmentType type,
+                        const Vector3d& slavePoint, double friction, double slipScale,
+                        double traction) {
+  PointCase c;
+  c.setup.kind = PointKind::NodeToSegment;
+  c.setup.layout = makeLayout(type, 1);
+  c.setup.layout.slaveShape[0] = 1.0;
+  c.setup.slave.nodalArea = 0.7;
+  c.setup.law = law(friction);
+  c.nodes.resize(3, c.setup.layout.nodeCount);
+  c.nodes.leftCols(c.setup.layout.masterCount) = master;
+  c.nodes.col(c.setup.layout.masterCount) = slavePoint;
+  const ProjectionResult p =
+      closestPointProjection(type, master, slavePoint, Vector2d::Zero());
+  const SurfaceFrame<double> f = surfaceFrame<double>(type, master, p.xi[0], p.xi[1]);
+  const Vector3d tangentTraction = traction * (f.rhoCov[0] - 0.4 * f.rhoCov[1]).normalized();
+  c.setup.history = historyWith(p.xi - slipScale * Vector2d(0.7, 0.3), tangentTraction);
+  c.setup.parameter = p.xi;
+  return c;
+}
+
+// STS: Gauss point `gauss` of a slave Quad4 against `master`.
+PointCase segmentToSegment(const NodeMatrix<double>& master, SegmentType type, double friction,
+                           double slipScale, double traction, bool freezeArea,
+                           double depth = 0.003) {
+  PointCase c;
+  c.setup.kind = PointKind::SegmentToSegment;
+  c.setup.layout = makeLayout(type, 4);
+  const Vector2d gauss(0.31, -0.57);
+  const SurfaceShape<double> shape = surfaceShape(SegmentType::Quad4, gauss[0], gauss[1]);
+  for (int a = 0; a < 4; ++a) c.setup.layout.slaveShape[a] = shape.value[a];
+  c.setup.slave.segmentType = SegmentType::Quad4;
+  c.setup.slave.gaussPoint = gauss;
+  c.setup.slave.gaussWeight = 1.0;
+  c.setup.law = law(friction);
+  c.nodes.resize(3, c.setup.layout.nodeCount);
+  c.nodes.leftCols(c.setup.layout.masterCount) = master;
+  const NodeMatrix<double> slave = slaveQuad4(depth);
+  c.nodes.rightCols(4) = slave;
+  if (freezeArea) {
+    Vector3d point;
+    std::array<Vector3d, 2> tangents;
+    interpolateSurface(slave, shape, point, tangents, nullptr);
+    c.setup.slave.frozenAreaElement = tangents[0].cross(tangents[1]).norm();
+  }
+  const Vector3d slavePoint = slave * Eigen::Map<const Eigen::Vector4d>(shape.value.data());
+  const ProjectionResult p = closestPointProjection(type, master, slavePoint, Vector2d::Zero());
+  const SurfaceFrame<double> f = surfaceFrame<double>(type, master, p.xi[0], p.xi[1]);
+  const Vector3d tangentTraction = traction * (f.rhoCov[1] + 0.2 * f.rhoCov[0]).normalized();
+  c.setup.history = historyWith(p.xi + slipScale * Vector2d(0.5, -0.6), tangentTraction);
+  c.setup.parameter = p.xi;
+  return c;
+}
+
+// STAS: a Gauss point of a deformable Quad4 segment (normal -z, facing down) above a rigid
+// surface, penetrating it.
+PointCase analyticalSurface(const RigidSurface& surface, double friction, double slipScale,
+                            double traction) {
+  PointCase c;
+  c.setup.kind = PointKind::SegmentToAnalytical;
+  c.setup.layout = makeLayout(SegmentType::Quad4, 0);
+  c.setup.law = law(friction);
+  c.setup.surface = &surface;
+  c.setup.parameter = Vector2d(-0.34, 0.52);
+  c.setup.gaussWeight = 1.0;
+  c.nodes = slaveQuad4(0.004);  // reused as the master: its normal points to -z
+  const SurfaceFrame<double> f =
+      surfaceFrame<double>(SegmentType::Quad4, c.nodes, c.setup.parameter[0], c.setup.parameter[1]);
+  c.setup.history.projected = true;
+  c.setup.history.masterPoint = f.rho - slipScale * (f.rhoCov[0] + 0.5 * f.rhoCov[1]);
+  c.setup.history.traction = traction * (f.rhoCov[0] - f.rhoCov[1]).normalized();
+  return c;
+}
+
+// A rigid plane under the STAS master segment, tilted by `tilt` radians against the segment.
+RigidSurface plane(double tilt = 0.05) {
+  RigidSurface s;
+  s.shape = RigidSurfaceSpec::Shape::Plane;
+  s.origin = Vector3d(0, 0, -0.001);
+  s.normal = Vector3d(0, std::sin(tilt), std::cos(tilt));
+  return s;
+}
+
+RigidSurface parabolicCylinder() {
+  RigidSurface s;
+  s.shape = RigidSurfaceSpec::Shape::ParabolicCylinder;
+  s.origin = Vector3d(0.1, 0, -0.002);
+  s.normal = Vector3d(0, 0, 1);
+  s.axis = Vector3d(0, 1, 0);
+  s.curvature = 0.05;
+  return s;
+}
+
+// Central differences of the point force; the step is chosen for an O(h^2) truncation error
+// near 1e-10 relative with round-off eps * |f| / h also near 1e-10 for forces of order 1.
+MatrixXd finiteDifferenceTangent(const PointCase& c, double h = 1e-6) {
+  const int dofs = 3 * c.setup.layout.nodeCount;
+  MatrixXd K(dofs, dofs);
+  for (int dof = 0; dof < dofs; ++dof) {
+    NodeMatrix<double> plus = c.nodes, minus = c.nodes;
+    plus(dof % 3, dof / 3) += h;
+    minus(dof % 3, dof / 3) -= h;
+    K.col(dof) = (evaluatePoint(c.setup, plus).force - evaluatePoint(c.setup, minus).force) / (2 * h);
+  }
+  return K;
+}
+
+MatrixXd tangent(const PointCase& c, ContactSpec::TangentMode mode, const TangentParts& parts) {
+  const PointEvaluation e = evaluatePoint(c.setup, c.nodes);
+  EXPECT_TRUE(e.valid);
+  MatrixXd K;
+  pointTangent(c.setup, c.nodes, e, mode, parts, K);
+  return K;
+}
+
+double relativeError(const MatrixXd& K, const MatrixXd& reference) {
+  return (K - reference).norm() / reference.norm();
+}
+
+PointState stateOf(const PointCase& c) { return evaluatePoint(c.setup, c.nodes).response.state; }
+
+const Vector3d kSlaveBelowFlat(0.21, -0.33, -0.002);
+const Vector3d kSlaveBelowCurved(0.27, 0.18, -0.025);
+
+// ---- the normal part (83)-(83b) is the exact linearization (frictionless, ds constant) up to
+// the O(g^2) terms the paper neglects (from delta xi's dependence on g, eq. (41) vs (42)) -----
+
+// Relative error of the paper's normal tangent against finite differences at penetration
+// depths d, d/2, d/4: it must fall like d^2 and be below 1e-6 at the smallest.
+template <class MakeCase>
+void expectNormalTangentExactUpToSecondOrder(MakeCase makeCase, double depth) {
+  double errors[3];
+  for (int k = 0; k < 3; ++k) {
+    const PointCase c = makeCase(depth / std::pow(2.0, k));
+    ASSERT_EQ(stateOf(c), PointState::Stick);
+    errors[k] = relativeError(tangent(c, ContactSpec::TangentMode::Paper, {}),
+                              finiteDifferenceTangent(c));
+  }
+  const double order = std::log2(errors[1] / errors[2]);
+  EXPECT_GT(order, 1.8) << errors[0] << " " << errors[1] << " " << errors[2];
+  EXPECT_LT(order, 2.2) << errors[0] << " " << errors[1] << " " << errors[2];
+  EXPECT_LT(errors[2], 1e-6);
+}
+
+TEST(NormalTangent, NodeToSegmentFlatIsExactToSecondOrderInGap) {
+  expectNormalTangentExactUpToSecondOrder(
+      [](double depth) {
+        return nodeToSegment(flatQuad4(), SegmentType::Quad4, Vector3d(0.21, -0.33, -depth), 0,
+                             0, 0);
+      },
+      4e-3);
+}
+
+TEST(NormalTangent, NodeToSegmentCurvedIsExactToSecondOrderInGap) {
+  // The curved master passes below the slave point at about z = -0.0098.
+  expectNormalTangentExactUpToSecondOrder(
+      [](double depth) {
+        return nodeToSegment(curvedQuad9(), SegmentType::Quad9,
+                             Vector3d(0.27, 0.18, -0.0098 - depth), 0, 0, 0);
+      },
+      4e-3);
+}
+
+TEST(NormalTangent, SegmentToSegmentCurvedWithConstantAreaIsExactToSecondOrderInGap) {
+  const PointCase probe = segmentToSegment(curvedQuad9(), SegmentType::Quad9, 0, 0, 0, true, 0.0);
+  const double surfaceHeight = evaluatePoint(probe.setup, probe.nodes).kinematics.gap;
+  expectNormalTangentExactUpToSecondOrder(
+      [&](double depth) {
+        return segmentToSegment(curvedQuad9(), SegmentType::Quad9, 0, 0, 0, true,
+                                depth + surfaceHeight);
+      },
+      4e-3);
+}
+
+// Without the rotational and curvature parts the normal tangent is not exact on a curved
+// master: the parts matter (guards against a test that cannot fail).
+TEST(NormalTangent, MainPartAloneIsNotExactOnCurvedMaster) {
+  const PointCase c =
+      nodeToSegment(curvedQuad9(), SegmentType::Quad9, kSlaveBelowCurved, 0, 0, 0);
+  TangentParts mainOnly;
+  mainOnly.normalRotational = mainOnly.normalCurvature = false;
+  EXPECT_GT(relativeError(tangent(c, ContactSpec::TangentMode::Paper, mainOnly),
+                          finiteDifferenceTangent(c)),
+            1e-4);
+}
+
+// ---- the exact tangent matches finite differences for every kind and state ------------------
+
+struct ExactCase {
+  const char* name;
+  PointCase c;
+  PointState expected;
+};
+
+TEST(ExactTangent, MatchesFiniteDifferencesForAllKindsAndStates) {
+  static const RigidSurface flatSurface = plane();
+  static const RigidSurface curvedSurface = parabolicCylinder();
+  const ExactCase cases[] = {
+      {"nts flat stick", nodeToSegment(flatQuad4(), SegmentType::Quad4, kSlaveBelowFlat, 0.3, 1e-3, 0.5), PointState::Stick},
+      {"nts flat slip", nodeToSegment(flatQuad4(), SegmentType::Quad4, kSlaveBelowFlat, 0.3, 5e-2, 0.5), PointState::Slip},
+      {"nts curved stick", nodeToSegment(curvedQuad9(), SegmentType::Quad9, kSlaveBelowCurved, 0.5, 1e-3, 1.0), PointState::Stick},
+      {"nts curved slip", nodeToSegment(curvedQuad9(), SegmentType::Quad9, kSlaveBelowCurved, 0.3, 5e-2, 4.0), PointState::Slip},
+      {"sts flat stick", segmentToSegment(flatQuad4(), SegmentType::Quad4, 0.5, 1e-3, 1.0, false), PointState::Stick},
+      {"sts curved slip", segmentToSegment(curvedQuad9(), SegmentType::Quad9, 0.3, 5e-2, 2.0, false, 0.03), PointState::Slip},
+      {"stas plane stick", analyticalSurface(flatSurface, 0.5, 1e-3, 1.0), PointState::Stick},
+      {"stas parabola slip", analyticalSurface(curvedSurface, 0.3, 5e-2, 2.0), PointState::Slip},
+  };
+  for (const ExactCase& e : cases) {
+    SCOPED_TRACE(e.name);
+    ASSERT_EQ(stateOf(e.c), e.expected);
+    EXPECT_LT(relativeError(tangent(e.c, ContactSpec::TangentMode::Exact, {}),
+                            finiteDifferenceTangent(e.c)),
+              1e-6);
+  }
+}
+
+// ---- the paper's tangential parts: symmetric in stick, error vanishing with the increment ---
+
+TEST(PaperTangent, StickTangentIsSymmetric) {
+  const PointCase c =
+      nodeToSegment(curvedQuad9(), SegmentType::Quad9, kSlaveBelowCurved, 0.5, 1e-3, 1.0);
+  ASSERT_EQ(stateOf(c), PointState::Stick);
+  const MatrixXd K = tangent(c, ContactSpec::TangentMode::Paper, {});
+  EXPECT_LT((K - K.transpose()).norm(), 1e-12 * K.norm());
+}
+
+TEST(PaperTangent, SlideTangentIsUnsymmetric) {
+  const PointCase c =
+      nodeToSegment(curvedQuad9(), SegmentType::Quad9, kSlaveBelowCurved, 0.3, 5e-2, 4.0);
+  ASSERT_EQ(stateOf(c), PointState::Slip);
+  const MatrixXd K = tangent(c, ContactSpec::TangentMode::Paper, {});
+  EXPECT_GT((K - K.transpose()).norm(), 1e-3 * K.norm());
+}
+
+// The paper's tangential parts linearize the continuous evolution equations (74) on the tangent
+// plane (section 4): against the discrete algorithm (77)-(79) they differ by terms of the order
+// of the load increment, i.e. of the slip Delta rho, of the penetration g (delta xi is taken at
+// xi^3 = 0, eq. (42) instead of (41)) and of the traction (|T| <= mu eps_N |g|). Scale all three
+// with an increment s and assert that the difference falls at first order.
+struct IncrementScaling {
+  const char* name;
+  std::function<PointCase(double)> make;
+  PointState state;
+};
+
+void expectFirstOrderInIncrement(const IncrementScaling& scaling) {
+  SCOPED_TRACE(scaling.name);
+  const double increments[3] = {4e-3, 2e-3, 1e-3};
+  double errors[3];
+  for (int k = 0; k < 3; ++k) {
+    const PointCase c = scaling.make(increments[k]);
+    ASSERT_EQ(stateOf(c), scaling.state);
+    errors[k] = relativeError(tangent(c, ContactSpec::TangentMode::Paper, {}),
+                              finiteDifferenceTangent(c));
+  }
+  for (int k = 0; k < 2; ++k) {
+    const double order = std::log2(errors[k] / errors[k + 1]);
+    EXPECT_GT(order, 0.8) << errors[0] << " " << errors[1] << " " << errors[2];
+    EXPECT_LT(order, 1.3) << errors[0] << " " << errors[1] << " " << errors[2];
+  }
+}
+
+// Slip multiplier: small enough to stick, large enough to slide.
+constexpr double kStickSlip = 0.2;
+constexpr double kSlideSlip = 5.0;
+constexpr double kFriction = 0.5;
+// Previous traction, as a fraction of the Coulomb limit mu eps_N s.
+constexpr double kTractionFraction = 0.2;
+
+PointCase nodeToSegmentScaled(bool curved, double s, double slip) {
+  const double surface = curved ? -0.0098 : 0.0;  // master height below the slave point
+  const Vector3d point = curved ? Vector3d(0.27, 0.18, surface - s) : Vector3d(0.21, -0.33, -s);
+  return nodeToSegment(curved ? curvedQuad9() : flatQuad4(),
+                       curved ? SegmentType::Quad9 : SegmentType::Quad4, point, kFriction,
+                       slip * s, kTractionFraction * kFriction * kPenaltyNormal * s);
+}
+
+PointCase segmentToSegmentScaled(double s, double slip) {
+  const PointCase probe =
+      segmentToSegment(curvedQuad9(), SegmentType::Quad9, 0, 0, 0, true, 0.0);
+  const double height = evaluatePoint(probe.setup, probe.nodes).kinematics.gap;
+  return segmentToSegment(curvedQuad9(), SegmentType::Quad9, kFriction, slip * s,
+                          kTractionFraction * kFriction * kPenaltyNormal * s, true, height + s);
+}
+
+PointCase analyticalSurfaceScaled(const RigidSurface& surface, double s, double slip) {
+  PointCase c = analyticalSurface(surface, kFriction, slip * s,
+                                  kTractionFraction * kFriction * kPenaltyNormal * s);
+  c.setup.surfaceOffset.setZero();
+  const double gapWithoutOffset = evaluatePoint(c.setup, c.nodes).kinematics.gap;
+  c.setup.surfaceOffset.z() = gapWithoutOffset + s;  // the master normal points along -z
+  c.setup.history.surfaceOffset = c.setup.surfaceOffset;
+  return c;
+}
+
+TEST(PaperTangent, TangentialPartsDifferFromDiscreteAlgorithmAtFirstOrderInIncrement) {
+  // The master segment of the STAS cases is not exactly planar; this plane is parallel to its
+  // tangent plane at the Gauss point.
+  static const RigidSurface parallelPlane = [] {
+    PointCase probe = analyticalSurface(plane(0.0), 0, 0, 0);
+    RigidSurface s = plane(0.0);
+    s.normal = -evaluatePoint(probe.setup, probe.nodes).kinematics.frame.normal;
+    return s;
+  }();
+  const IncrementScaling cases[] = {
+      {"nts flat stick", [](double s) { return nodeToSegmentScaled(false, s, kStickSlip); }, PointState::Stick},
+      {"nts flat slide", [](double s) { return nodeToSegmentScaled(false, s, kSlideSlip); }, PointState::Slip},
+      {"nts curved stick", [](double s) { return nodeToSegmentScaled(true, s, kStickSlip); }, PointState::Stick},
+      {"nts curved slide", [](double s) { return nodeToSegmentScaled(true, s, kSlideSlip); }, PointState::Slip},
+      {"sts curved stick", [](double s) { return segmentToSegmentScaled(s, kStickSlip); }, PointState::Stick},
+      {"sts curved slide", [](double s) { return segmentToSegmentScaled(s, kSlideSlip); }, PointState::Slip},
+      {"stas parallel plane stick", [](double s) { return analyticalSurfaceScaled(parallelPlane, s, kStickSlip); }, PointState::Stick},
+      {"stas parallel plane slide", [](double s) { return analyticalSurfaceScaled(parallelPlane, s, kSlideSlip); }, PointState::Slip},
+  };
+  for (const IncrementScaling& scaling : cases) expectFirstOrderInIncrement(scaling);
+}
+
+// STAS measures the gap along the master normal, eq. (117), and integrates at fixed master Gauss
+// points; the paper's parts treat the rigid point like a projected slave point. Where the rigid
+// surface is tilted against the master segment (a faceted master on a curved rigid surface)
+// this leaves a difference proportional to the tilt angle that no increment removes.
+TEST(PaperTangent, AnalyticalSurfaceDifferenceGrowsWithTiltAtFirstOrder) {
+  double errors[2];
+  const double tilts[2] = {0.04, 0.02};
+  const double s = 1e-4;
+  for (int k = 0; k < 2; ++k) {
+    const RigidSurface tilted = plane(tilts[k]);
+    const PointCase c = analyticalSurfaceScaled(tilted, s, kStickSlip);
+    ASSERT_EQ(stateOf(c), PointState::Stick);
+    errors[k] = relativeError(tangent(c, ContactSpec::TangentMode::Paper, {}),
+                              finiteDifferenceTangent(c));
+  }
+  const double order = std::log2(errors[0] / errors[1]);
+  EXPECT_GT(order, 0.8) << errors[0] << " " << errors[1];
+  EXPECT_LT(order, 1.3) << errors[0] << " " << errors[1];
+}
+
+}  // namespace
+}  // namespace cc::contact
