@@ -47,9 +47,9 @@ TopologyKey topologyOf(const Contribution& contribution) {
 struct LocalBuffers {
   Eigen::VectorXd force;
   Eigen::MatrixXd tangent;
-  std::vector<int> equations;     // free equation of each local dof, or -1
-  std::vector<int> prescribed;    // prescribed index of each local dof, or -1
-  std::vector<int> firstEquation; // smallest free equation of each local node, or -1
+  std::vector<int> equations;      // free equation of each local dof, or -1
+  std::vector<int> prescribed;     // prescribed index of each local dof, or -1
+  std::vector<int> firstEquation;  // smallest free equation of each local node, or -1
 };
 
 // The first failure one thread met (items are visited in ascending order within a color).
@@ -107,8 +107,8 @@ void scatterColumn(const LocalBuffers& local, int localColumn, int blockColumn,
     for (int component = 0; component < 3; ++component) {
       const int row = local.equations[3 * k + component];
       if (row >= 0) {
-        values[base + (row - first)] += local.tangent(static_cast<Eigen::Index>(3 * k + component),
-                                                      localColumn);
+        values[base + (row - first)] +=
+            local.tangent(static_cast<Eigen::Index>(3 * k + component), localColumn);
       }
     }
   }
@@ -249,8 +249,8 @@ void Assembler::Impl::evaluateContribution(std::size_t index, const AssemblyStat
   }
   if (!first.failed) return;
   if (first.error) std::rethrow_exception(first.error);
-  throw StepFailure(first.kind, contribution.name() + " item " + std::to_string(first.item) +
-                                    ": " + first.detail);
+  throw StepFailure(first.kind, contribution.name() + " item " + std::to_string(first.item) + ": " +
+                                    first.detail);
 }
 
 Assembler::Assembler(const DofMap& dofs, std::vector<Contribution*> contributions)
@@ -258,7 +258,9 @@ Assembler::Assembler(const DofMap& dofs, std::vector<Contribution*> contribution
 
 Assembler::~Assembler() = default;
 
-int Assembler::threads() const { return omp_get_max_threads(); }
+int Assembler::threads() const {
+  return omp_get_max_threads();
+}
 
 namespace {
 

@@ -18,9 +18,9 @@ namespace cc {
 using SparseMatrix = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
 
 struct SystemMatrices {
-  SparseMatrix free;      // K_ff: numFree x numFree (full storage, both triangles)
-  SparseMatrix coupling;  // K_fp: numFree x numPrescribed
-  bool symmetric = true;  // every contribution reported a symmetric tangent
+  SparseMatrix free;                 // K_ff: numFree x numFree (full storage, both triangles)
+  SparseMatrix coupling;             // K_fp: numFree x numPrescribed
+  bool symmetric = true;             // every contribution reported a symmetric tangent
   std::uint64_t patternVersion = 0;  // changes with the pattern; unique in the process, 0 = none
 };
 

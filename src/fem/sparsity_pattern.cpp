@@ -33,7 +33,8 @@ NodeGraph buildNodeGraph(std::span<Contribution* const> contributions, int numNo
         }
       }
     }
-    std::sort(graph.neighbours.begin() + static_cast<std::ptrdiff_t>(first), graph.neighbours.end());
+    std::sort(graph.neighbours.begin() + static_cast<std::ptrdiff_t>(first),
+              graph.neighbours.end());
     graph.offsets[node + 1] = static_cast<std::int64_t>(graph.neighbours.size());
   }
   return graph;

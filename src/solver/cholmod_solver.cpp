@@ -1,12 +1,11 @@
 // CHOLMOD supernodal Cholesky (A = L L^T) behind the LinearSolver interface, called through
 // CHOLMOD's C API so that the ordering, the failing pivot and the condition estimate are ours.
 #include <cholmod.h>
+#include <fmt/format.h>
 
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
-
-#include <fmt/format.h>
 
 #include "common/errors.hpp"
 #include "solver/linear_solver.hpp"
@@ -42,10 +41,14 @@ cholmod_sparse viewOf(const SparseMatrix& matrix) {
 
 int orderingCode(CholmodOrdering ordering) {
   switch (ordering) {
-    case CholmodOrdering::Amd: return CHOLMOD_AMD;
-    case CholmodOrdering::Metis: return CHOLMOD_METIS;
-    case CholmodOrdering::NestedDissection: return CHOLMOD_NESDIS;
-    case CholmodOrdering::Automatic: break;
+    case CholmodOrdering::Amd:
+      return CHOLMOD_AMD;
+    case CholmodOrdering::Metis:
+      return CHOLMOD_METIS;
+    case CholmodOrdering::NestedDissection:
+      return CHOLMOD_NESDIS;
+    case CholmodOrdering::Automatic:
+      break;
   }
   return CHOLMOD_AMD;
 }
@@ -102,8 +105,8 @@ class CholmodSolver final : public LinearSolver {
     }
     if (common_.status < CHOLMOD_OK) {
       ++statistics_.failedFactorizations;
-      throw std::runtime_error(fmt::format("CHOLMOD factorization failed (status {})",
-                                           common_.status));
+      throw std::runtime_error(
+          fmt::format("CHOLMOD factorization failed (status {})", common_.status));
     }
     // cholmod_rcond is (min L_ii / max L_ii)^2, the pivot ratio of A = L D L^T.
     const double pivotRatio = cholmod_rcond(factor_, &common_);

@@ -60,8 +60,7 @@ enum class CholmodOrdering {
 // notes): METIS gives the least fill and the fastest factorization for these problems.
 inline constexpr CholmodOrdering kDefaultCholmodOrdering = CholmodOrdering::Metis;
 
-std::unique_ptr<LinearSolver> makeCholmodSolver(
-    CholmodOrdering ordering = kDefaultCholmodOrdering);
+std::unique_ptr<LinearSolver> makeCholmodSolver(CholmodOrdering ordering = kDefaultCholmodOrdering);
 std::unique_ptr<LinearSolver> makeUmfpackSolver();
 
 }  // namespace cc

@@ -1,11 +1,11 @@
 // Phases of load steps with cut-back and regrowth (see load_stepper.hpp for the time keeping).
 #include "solver/load_stepper.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
-
-#include <fmt/format.h>
 
 namespace cc {
 
@@ -87,8 +87,7 @@ bool LoadStepper::runPhase(const PhaseSpec& phase, double phaseStart, PhaseRun& 
   StepControl control;
   double position = std::max(0.0, snapped((run.time - phaseStart) / phase.dt));
   while (position < phase.steps) {
-    const double target =
-        snapped(std::min(position + control.fraction, std::floor(position) + 1));
+    const double target = snapped(std::min(position + control.fraction, std::floor(position) + 1));
     const double targetTime = phaseStart + target * phase.dt;
     const NewtonStep step{run.step + 1, control.cutbacks, targetTime, run.time};
     const NewtonResult result = newton_->solve(step, phase.newton, run.displacement);
@@ -154,8 +153,8 @@ bool LoadStepper::rejectStep(const PhaseSpec& phase, const NewtonResult& result,
                            ? RunSummary::Outcome::Singular
                            : RunSummary::Outcome::Diverged;
     summary_.message =
-        fmt::format("step {} to t = {:.6g} (dt = {:.3g}) failed after {} cut-backs: {}",
-                    step.step, step.time, dt, control.cutbacks, result.message);
+        fmt::format("step {} to t = {:.6g} (dt = {:.3g}) failed after {} cut-backs: {}", step.step,
+                    step.time, dt, control.cutbacks, result.message);
     return false;
   }
   ++control.cutbacks;

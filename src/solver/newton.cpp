@@ -2,10 +2,10 @@
 // energy norms per iteration, convergence tests as documented in newton.hpp, optional line search.
 #include "solver/newton.hpp"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <limits>
-
-#include <fmt/format.h>
 
 namespace cc {
 
@@ -46,9 +46,12 @@ bool convergedAfterSolve(const NewtonSpec& spec, const Norms& norms, int iterati
   const bool residualMet = iteration > 1 && norms.relativeResidual() <= spec.residualTolerance;
   switch (spec.criterion) {
     case NewtonSpec::Criterion::Energy:
-    case NewtonSpec::Criterion::Either: return energyMet;
-    case NewtonSpec::Criterion::Both: return energyMet && residualMet;
-    case NewtonSpec::Criterion::Residual: return false;
+    case NewtonSpec::Criterion::Either:
+      return energyMet;
+    case NewtonSpec::Criterion::Both:
+      return energyMet && residualMet;
+    case NewtonSpec::Criterion::Residual:
+      return false;
   }
   return false;
 }
@@ -61,8 +64,8 @@ Newton::Newton(NonlinearProblem& problem, StepObserver& observer, Clock::time_po
 void Newton::assembleAt(const Eigen::VectorXd& displacement, const NewtonStep& step,
                         bool withTangent) {
   const Eigen::Matrix3Xd& reference = problem_.referenceCoordinates();
-  current_ = reference + Eigen::Map<const Eigen::Matrix3Xd>(displacement.data(), 3,
-                                                           reference.cols());
+  current_ =
+      reference + Eigen::Map<const Eigen::Matrix3Xd>(displacement.data(), 3, reference.cols());
   AssemblyState state;
   state.time = step.time;
   state.previousTime = step.previousTime;
@@ -122,8 +125,8 @@ NewtonResult Newton::solve(const NewtonStep& step, const NewtonSpec& spec,
                            Eigen::VectorXd& displacement) {
   const DofMap& dofs = problem_.dofMap();
   const Eigen::Matrix3Xd& reference = problem_.referenceCoordinates();
-  previous_ = reference + Eigen::Map<const Eigen::Matrix3Xd>(displacement.data(), 3,
-                                                            reference.cols());
+  previous_ =
+      reference + Eigen::Map<const Eigen::Matrix3Xd>(displacement.data(), 3, reference.cols());
   Eigen::VectorXd prescribedTarget(dofs.numPrescribed());
   problem_.prescribedValues(step.time, prescribedTarget);
   problem_.externalForces(step.time, externalForce_);
@@ -154,11 +157,9 @@ NewtonResult Newton::solve(const NewtonStep& step, const NewtonSpec& spec,
     }
     const double forceScale = std::max(internalForce_.norm(), externalForce_.norm());
     const bool atRoundoff = norms.residual <= kRoundoffResidual * forceScale;
-    const bool residualMet =
-        iteration > 1 && norms.relativeResidual() <= spec.residualTolerance;
-    if (atRoundoff || (usesResidual(spec.criterion) && residualMet)) {
-      if (iteration == 1) applyPrescribed();
-      return converged(std::max(iteration - 1, 1));
+    const bool residualMet = iteration > 1 && norms.relativeResidual() <= spec.residualTolerance;
+    if (iteration > 1 && usesResidual(spec.criterion) && (residualMet || atRoundoff)) {
+      return converged(iteration - 1);
     }
     if (iteration > 1 && norms.relativeResidual() > spec.divergenceFactor) {
       return failed(iteration, FailureKind::Diverged,
@@ -174,15 +175,14 @@ NewtonResult Newton::solve(const NewtonStep& step, const NewtonSpec& spec,
     }
     norms.energy = std::abs(du.dot(rhs));
     if (iteration == 1) norms.firstEnergy = norms.energy;
-    const double fraction =
-        (spec.lineSearch && iteration > 1) ? lineSearch(step, du, rhs, displacement) : 1.0;
-    addToFree(displacement, du, fraction);
     if (iteration == 1) applyPrescribed();
+    const double fraction = spec.lineSearch ? lineSearch(step, du, rhs, displacement) : 1.0;
+    addToFree(displacement, du, fraction);
 
     observer_.iteration({step.step, step.attempt, iteration, step.time, norms.residual,
                          norms.relativeResidual(), norms.energy, norms.relativeEnergy(),
                          secondsSince(runStart_)});
-    if (convergedAfterSolve(spec, norms, iteration)) return converged(iteration);
+    if (atRoundoff || convergedAfterSolve(spec, norms, iteration)) return converged(iteration);
     if (observer_.stopRequested()) {
       return {NewtonResult::Status::Interrupted, iteration, FailureKind::Diverged, "interrupted"};
     }

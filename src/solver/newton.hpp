@@ -10,9 +10,11 @@
 //  - Either: whichever of the two tests above passes first.
 //  - Both: after solve k, the energy test and ||rhs_k|| <= residualTolerance ||rhs_1|| (both of
 //    iteration k) -> k iterations.
-//  - Always: a residual at round-off level of the forces (||rhs_k|| <= kRoundoffResidual *
-//    max(||f_int||, ||f_ext||)) cannot be reduced further and counts as converged with
-//    max(k - 1, 1) iterations; in particular a step that starts in equilibrium takes 1.
+//  - Round-off: a residual at round-off level of the forces (||rhs_k|| <= kRoundoffResidual *
+//    max(||f_int||, ||f_ext||)) cannot be reduced further, whatever the relative tests say.
+//    Residual and Either then converge at the start of iteration k >= 2 (k - 1 iterations);
+//    otherwise solve k is still done and logged, as FEAP would, and the step converges after
+//    it (k iterations). A step that starts in equilibrium therefore takes 1 iteration.
 // rhs_1 = -(R_f + K_fp du_p), rhs_k = -R_f for k >= 2, R = f_int - f_ext.
 #pragma once
 
@@ -30,9 +32,11 @@ namespace cc {
 // (machine epsilon times the growth of summing many element contributions per dof).
 inline constexpr double kRoundoffResidual = 1e3 * 2.220446049250313e-16;
 
-// Line search (NewtonSpec::lineSearch, iterations k >= 2): accept the step fraction s when
-// |du . R(u + s du)| <= kLineSearchRatio |du . R(u)|, halving s at most kLineSearchHalvings
-// times; otherwise take the fraction with the smallest |du . R|.
+// Line search (NewtonSpec::lineSearch): backtracking on the energy along du. Accept the step
+// fraction s when |du . R_f(u + s du)| <= kLineSearchRatio |du . rhs|, halving s at most
+// kLineSearchHalvings times, else take the tried fraction with the smallest |du . R_f|. In the
+// first iteration the prescribed dofs sit at their new values in every trial; |du . rhs| then
+// is the linearized slope at s = 0. Each trial costs one residual assembly.
 inline constexpr double kLineSearchRatio = 0.8;
 inline constexpr int kLineSearchHalvings = 4;
 
@@ -46,9 +50,9 @@ struct NewtonStep {
 struct NewtonResult {
   enum class Status { Converged, Failed, Interrupted };
   Status status = Status::Failed;
-  int iterations = 0;        // converged: see the definition above; failed: iteration reached
+  int iterations = 0;  // converged: see the definition above; failed: iteration reached
   FailureKind failure = FailureKind::Diverged;
-  std::string message;       // why it failed
+  std::string message;  // why it failed
 };
 
 // Work counters of a run (benchmarks, progress line).
@@ -70,8 +74,7 @@ class Newton {
   // `displacement` (3 * numNodes) holds the converged state at step.previousTime on entry and
   // the solution at step.time when converged; otherwise it is left in between (the caller
   // restores it and calls problem.restoreStep()).
-  NewtonResult solve(const NewtonStep& step, const NewtonSpec& spec,
-                     Eigen::VectorXd& displacement);
+  NewtonResult solve(const NewtonStep& step, const NewtonSpec& spec, Eigen::VectorXd& displacement);
 
   // Internal force of the last assembly (the converged one, see the header comment).
   const Eigen::VectorXd& internalForce() const { return internalForce_; }
@@ -82,8 +85,8 @@ class Newton {
  private:
   void assembleAt(const Eigen::VectorXd& displacement, const NewtonStep& step, bool withTangent);
   Eigen::VectorXd freeResidual() const;  // R_f = f_int - f_ext on free dofs
-  double lineSearch(const NewtonStep& step, const Eigen::VectorXd& du,
-                    const Eigen::VectorXd& rhs, Eigen::VectorXd& displacement);
+  double lineSearch(const NewtonStep& step, const Eigen::VectorXd& du, const Eigen::VectorXd& rhs,
+                    Eigen::VectorXd& displacement);
   void addToFree(Eigen::VectorXd& displacement, const Eigen::VectorXd& du, double scale) const;
 
   NonlinearProblem& problem_;

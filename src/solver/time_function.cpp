@@ -2,13 +2,12 @@
 // constant beyond their first and last points.
 #include "solver/time_function.hpp"
 
+#include <fmt/format.h>
 #include <muParser.h>
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
-
-#include <fmt/format.h>
 
 #include "common/errors.hpp"
 
@@ -43,14 +42,14 @@ class ExpressionFunction final : public ScalarFunction {
     try {
       value = parser_.Eval();
     } catch (const mu::Parser::exception_type& error) {
-      throw InputError(where_, fmt::format("evaluating \"{}\" at t = {}: {}",
-                                           parser_.GetExpr(), t, error.GetMsg()));
+      throw InputError(where_, fmt::format("evaluating \"{}\" at t = {}: {}", parser_.GetExpr(), t,
+                                           error.GetMsg()));
     }
     if (!std::isfinite(value)) {
-      throw InputError(where_, fmt::format("expression \"{}\" is not finite at t = {}, x = ({}, "
-                                           "{}, {})",
-                                           parser_.GetExpr(), t, position[0], position[1],
-                                           position[2]));
+      throw InputError(where_,
+                       fmt::format("expression \"{}\" is not finite at t = {}, x = ({}, "
+                                   "{}, {})",
+                                   parser_.GetExpr(), t, position[0], position[1], position[2]));
     }
     return value;
   }
@@ -82,10 +81,9 @@ class TableFunction final : public ScalarFunction {
   double operator()(double t, const Eigen::Vector3d&) const override {
     if (t <= points_.front().first) return points_.front().second;
     if (t >= points_.back().first) return points_.back().second;
-    const auto upper = std::upper_bound(points_.begin(), points_.end(), t,
-                                        [](double time, const auto& point) {
-                                          return time < point.first;
-                                        });
+    const auto upper =
+        std::upper_bound(points_.begin(), points_.end(), t,
+                         [](double time, const auto& point) { return time < point.first; });
     const auto lower = upper - 1;
     const double fraction = (t - lower->first) / (upper->first - lower->first);
     return lower->second + fraction * (upper->second - lower->second);

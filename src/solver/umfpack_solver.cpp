@@ -1,11 +1,10 @@
 // UMFPACK sparse LU behind the LinearSolver interface (unsymmetric tangents of frictional
 // sliding, and symmetric indefinite ones that CHOLMOD rejects).
+#include <fmt/format.h>
 #include <umfpack.h>
 
 #include <chrono>
 #include <stdexcept>
-
-#include <fmt/format.h>
 
 #include "common/errors.hpp"
 #include "solver/linear_solver.hpp"
@@ -31,9 +30,9 @@ class UmfpackSolver final : public LinearSolver {
     checkShape(matrix);
     const auto start = std::chrono::steady_clock::now();
     release();
-    const int status = umfpack_di_symbolic(rows(matrix), rows(matrix), matrix.outerIndexPtr(),
-                                           matrix.innerIndexPtr(), matrix.valuePtr(), &symbolic_,
-                                           control_, info_);
+    const int status =
+        umfpack_di_symbolic(rows(matrix), rows(matrix), matrix.outerIndexPtr(),
+                            matrix.innerIndexPtr(), matrix.valuePtr(), &symbolic_, control_, info_);
     if (status != UMFPACK_OK) {
       throw std::runtime_error(fmt::format("UMFPACK analysis failed (status {})", status));
     }
@@ -80,10 +79,9 @@ class UmfpackSolver final : public LinearSolver {
     if (!numeric_ || !matrix_) throw std::logic_error("UMFPACK: solve() without factorization");
     const auto start = std::chrono::steady_clock::now();
     Eigen::VectorXd solution(rhs.size());
-    const int status =
-        umfpack_di_solve(UMFPACK_A, matrix_->outerIndexPtr(), matrix_->innerIndexPtr(),
-                         matrix_->valuePtr(), solution.data(), rhs.data(), numeric_, control_,
-                         info_);
+    const int status = umfpack_di_solve(UMFPACK_A, matrix_->outerIndexPtr(),
+                                        matrix_->innerIndexPtr(), matrix_->valuePtr(),
+                                        solution.data(), rhs.data(), numeric_, control_, info_);
     if (status != UMFPACK_OK) {
       throw std::runtime_error(fmt::format("UMFPACK solve failed (status {})", status));
     }
@@ -115,6 +113,8 @@ class UmfpackSolver final : public LinearSolver {
 
 }  // namespace
 
-std::unique_ptr<LinearSolver> makeUmfpackSolver() { return std::make_unique<UmfpackSolver>(); }
+std::unique_ptr<LinearSolver> makeUmfpackSolver() {
+  return std::make_unique<UmfpackSolver>();
+}
 
 }  // namespace cc

@@ -1,0 +1,321 @@
+// Assembler: coloring validity, scatter against a dense reference, parallel == serial,
+// pattern reuse and rebuild on topology change, failure reporting.
+#include <gtest/gtest.h>
+#include <omp.h>
+
+#include <Eigen/Dense>
+#include <cmath>
+#include <limits>
+#include <set>
+
+#include "fem/assembler.hpp"
+#include "fem/coloring.hpp"
+
+namespace cc {
+namespace {
+
+// Structured grid of hexahedral cells; each cell is an item whose 8 nodes are tied pairwise by
+// axial linear springs (stiffness varies by pair and cell so every entry is distinct).
+class GridSprings : public Contribution {
+ public:
+  GridSprings(int nx, int ny, int nz) : nx_(nx), ny_(ny), nz_(nz) {
+    for (int k = 0; k <= nz; ++k)
+      for (int j = 0; j <= ny; ++j)
+        for (int i = 0; i <= nx; ++i) reference_.push_back(Eigen::Vector3d(i, j, k));
+    for (int k = 0; k < nz; ++k)
+      for (int j = 0; j < ny; ++j)
+        for (int i = 0; i < nx; ++i) {
+          std::vector<int> cell;
+          for (int c = 0; c < 8; ++c)
+            cell.push_back(node(i + (c & 1), j + ((c >> 1) & 1), k + (c >> 2)));
+          cells_.push_back(cell);
+        }
+  }
+  int numNodes() const { return static_cast<int>(reference_.size()); }
+  std::string name() const override { return "grid springs"; }
+  std::size_t itemCount() const override { return cells_.size(); }
+  std::span<const int> itemNodes(std::size_t item) const override { return cells_[item]; }
+
+  // Stiffness of one cell: sum over node pairs of k_ab n n^T couplings, n = unit(X_b - X_a).
+  Eigen::MatrixXd localStiffness(std::size_t item) const {
+    Eigen::MatrixXd stiffness = Eigen::MatrixXd::Zero(24, 24);
+    for (int a = 0; a < 8; ++a)
+      for (int b = a + 1; b < 8; ++b) {
+        const Eigen::Vector3d axis =
+            (reference_[cells_[item][b]] - reference_[cells_[item][a]]).normalized();
+        const double k = 1.0 + 0.1 * (a + b) + 0.01 * static_cast<double>(item);
+        const Eigen::Matrix3d block = k * axis * axis.transpose();
+        stiffness.block<3, 3>(3 * a, 3 * a) += block;
+        stiffness.block<3, 3>(3 * b, 3 * b) += block;
+        stiffness.block<3, 3>(3 * a, 3 * b) -= block;
+        stiffness.block<3, 3>(3 * b, 3 * a) -= block;
+      }
+    return stiffness;
+  }
+
+  LocalStatus evaluate(std::size_t item, const AssemblyState& state, Eigen::VectorXd& force,
+                       Eigen::MatrixXd* tangent) override {
+    Eigen::VectorXd displacement(24);
+    for (int a = 0; a < 8; ++a) {
+      const int n = cells_[item][a];
+      displacement.segment<3>(3 * a) = state.current->col(n) - state.reference->col(n);
+    }
+    const Eigen::MatrixXd stiffness = localStiffness(item);
+    force += stiffness * displacement;
+    if (tangent) *tangent += stiffness;
+    return LocalStatus::success();
+  }
+
+  Eigen::Matrix3Xd referenceMatrix() const {
+    Eigen::Matrix3Xd x(3, numNodes());
+    for (int n = 0; n < numNodes(); ++n) x.col(n) = reference_[n];
+    return x;
+  }
+
+ private:
+  int node(int i, int j, int k) const { return i + (nx_ + 1) * (j + (ny_ + 1) * k); }
+  int nx_, ny_, nz_;
+  std::vector<Eigen::Vector3d> reference_;
+  std::vector<std::vector<int>> cells_;
+};
+
+// Fixes the bottom layer (z = 0) fully and prescribes ux on the top layer.
+DofMap gridDofs(const GridSprings& grid, int nz) {
+  const Eigen::Matrix3Xd x = grid.referenceMatrix();
+  std::vector<bool> constrained(3 * grid.numNodes(), false);
+  for (int n = 0; n < grid.numNodes(); ++n) {
+    if (x(2, n) == 0) constrained[3 * n] = constrained[3 * n + 1] = constrained[3 * n + 2] = true;
+    if (x(2, n) == nz) constrained[3 * n] = true;
+  }
+  return DofMap(std::vector<bool>(grid.numNodes(), true), constrained);
+}
+
+// A deterministic, non-trivial displacement field.
+Eigen::Matrix3Xd displaced(const Eigen::Matrix3Xd& reference) {
+  Eigen::Matrix3Xd current = reference;
+  for (int n = 0; n < reference.cols(); ++n) {
+    current.col(n) += 0.01 * Eigen::Vector3d(std::sin(n), std::cos(2.0 * n), std::sin(3.0 * n));
+  }
+  return current;
+}
+
+struct Assembled {
+  Eigen::VectorXd force;
+  SystemMatrices matrices;
+};
+
+Assembled assembleWithThreads(int threads, GridSprings& grid, const DofMap& dofs) {
+  const int saved = omp_get_max_threads();
+  omp_set_num_threads(threads);
+  const Eigen::Matrix3Xd reference = grid.referenceMatrix();
+  const Eigen::Matrix3Xd current = displaced(reference);
+  AssemblyState state;
+  state.reference = &reference;
+  state.current = &current;
+  state.previous = &reference;
+  Assembler assembler(dofs, {&grid});
+  EXPECT_EQ(assembler.threads(), threads);
+  Assembled result;
+  assembler.assemble(state, result.force, &result.matrices);
+  omp_set_num_threads(saved);
+  return result;
+}
+
+TEST(Coloring, NoTwoItemsOfOneColorShareANodeAndEveryItemIsColoredOnce) {
+  GridSprings grid(5, 4, 3);
+  const ItemColoring coloring = colorItems(grid, grid.numNodes());
+  ASSERT_EQ(coloring.items.size(), grid.itemCount());
+  // A node of a structured hex grid touches 8 cells, so at least 8 colors are needed.
+  EXPECT_GE(coloring.numColors(), 8u);
+  std::set<std::size_t> seen;
+  for (std::size_t color = 0; color < coloring.numColors(); ++color) {
+    std::set<int> nodesOfColor;
+    for (std::size_t k = coloring.colorBegin[color]; k < coloring.colorBegin[color + 1]; ++k) {
+      EXPECT_TRUE(seen.insert(coloring.items[k]).second);
+      for (int node : grid.itemNodes(coloring.items[k])) {
+        EXPECT_TRUE(nodesOfColor.insert(node).second)
+            << "node " << node << " appears twice in color " << color;
+      }
+    }
+  }
+  EXPECT_EQ(seen.size(), grid.itemCount());
+}
+
+TEST(Assembler, MatchesDenseReferenceAssembly) {
+  const int nz = 2;
+  GridSprings grid(3, 2, nz);
+  const DofMap dofs = gridDofs(grid, nz);
+  const Assembled result = assembleWithThreads(2, grid, dofs);
+
+  const int size = 3 * grid.numNodes();
+  Eigen::MatrixXd dense = Eigen::MatrixXd::Zero(size, size);
+  for (std::size_t item = 0; item < grid.itemCount(); ++item) {
+    const Eigen::MatrixXd local = grid.localStiffness(item);
+    const auto nodes = grid.itemNodes(item);
+    for (int a = 0; a < 8; ++a)
+      for (int b = 0; b < 8; ++b)
+        dense.block<3, 3>(3 * nodes[a], 3 * nodes[b]) += local.block<3, 3>(3 * a, 3 * b);
+  }
+  const Eigen::Matrix3Xd reference = grid.referenceMatrix();
+  const Eigen::Matrix3Xd difference = displaced(reference) - reference;
+  const Eigen::VectorXd expectedForce =
+      dense * Eigen::Map<const Eigen::VectorXd>(difference.data(), size);
+  EXPECT_LT((result.force - expectedForce).norm(), 1e-13 * expectedForce.norm());
+
+  const Eigen::MatrixXd free = Eigen::MatrixXd(result.matrices.free);
+  const Eigen::MatrixXd coupling = Eigen::MatrixXd(result.matrices.coupling);
+  ASSERT_EQ(free.rows(), dofs.numFree());
+  ASSERT_EQ(coupling.cols(), dofs.numPrescribed());
+  double largestError = 0;
+  for (int i = 0; i < dofs.numFree(); ++i) {
+    for (int j = 0; j < dofs.numFree(); ++j) {
+      largestError = std::max(largestError,
+                              std::abs(free(i, j) - dense(dofs.freeDofs()[i], dofs.freeDofs()[j])));
+    }
+    for (int p = 0; p < dofs.numPrescribed(); ++p) {
+      largestError =
+          std::max(largestError,
+                   std::abs(coupling(i, p) - dense(dofs.freeDofs()[i], dofs.prescribedDofs()[p])));
+    }
+  }
+  EXPECT_LT(largestError, 1e-13);
+  EXPECT_TRUE(result.matrices.symmetric);
+  EXPECT_NE(result.matrices.patternVersion, 0u);
+}
+
+TEST(Assembler, ParallelAssemblyEqualsSerialBitForBit) {
+  // Colors fix the order in which items add into any entry, whatever the thread count.
+  const int nz = 3;
+  GridSprings grid(4, 4, nz);
+  const DofMap dofs = gridDofs(grid, nz);
+  const Assembled serial = assembleWithThreads(1, grid, dofs);
+  const Assembled parallel = assembleWithThreads(2, grid, dofs);
+  EXPECT_EQ(serial.force, parallel.force);
+  EXPECT_TRUE(serial.matrices.free.isApprox(parallel.matrices.free, 0.0));
+  EXPECT_EQ((Eigen::MatrixXd(serial.matrices.free) - Eigen::MatrixXd(parallel.matrices.free))
+                .cwiseAbs()
+                .maxCoeff(),
+            0.0);
+  EXPECT_EQ(
+      (Eigen::MatrixXd(serial.matrices.coupling) - Eigen::MatrixXd(parallel.matrices.coupling))
+          .cwiseAbs()
+          .maxCoeff(),
+      0.0);
+}
+
+// Items given explicitly; tests change them and bump the version like a contact search would.
+class ListContribution : public Contribution {
+ public:
+  std::vector<std::vector<int>> items;
+  std::uint64_t version = 1;
+  std::set<std::size_t> failing;  // items that report a failure
+  std::size_t nanItem = std::numeric_limits<std::size_t>::max();
+  bool symmetric = true;
+
+  std::string name() const override { return "list"; }
+  std::size_t itemCount() const override { return items.size(); }
+  std::span<const int> itemNodes(std::size_t item) const override { return items[item]; }
+  std::uint64_t topologyVersion() const override { return version; }
+  bool tangentSymmetric() const override { return symmetric; }
+  LocalStatus evaluate(std::size_t item, const AssemblyState&, Eigen::VectorXd& force,
+                       Eigen::MatrixXd* tangent) override {
+    if (failing.count(item)) {
+      return LocalStatus::failure(FailureKind::InvertedElement, "det J = -1 at point 3");
+    }
+    force.setOnes();
+    if (item == nanItem) force[0] = std::numeric_limits<double>::quiet_NaN();
+    if (tangent) tangent->setIdentity();
+    return LocalStatus::success();
+  }
+};
+
+struct ListFixture {
+  Eigen::Matrix3Xd reference = Eigen::Matrix3Xd::Zero(3, 6);
+  DofMap dofs{std::vector<bool>(6, true), std::vector<bool>(18, false)};
+  ListContribution list;
+  AssemblyState state;
+  ListFixture() {
+    list.items = {{0, 1}, {1, 2}, {3, 4}};
+    state.reference = state.current = state.previous = &reference;
+  }
+};
+
+TEST(Assembler, PatternKeptWhileTopologyUnchangedAndRebuiltWhenItChanges) {
+  ListFixture fixture;
+  Assembler assembler(fixture.dofs, {&fixture.list});
+  Eigen::VectorXd force;
+  SystemMatrices matrices;
+  for (int k = 0; k < 3; ++k) assembler.assemble(fixture.state, force, &matrices);
+  EXPECT_EQ(assembler.timings().patternBuilds, 1);
+  EXPECT_EQ(assembler.timings().colorings, 1);
+  const std::uint64_t firstVersion = matrices.patternVersion;
+  const Eigen::Index firstNonZeros = matrices.free.nonZeros();
+
+  fixture.list.items.push_back({4, 5});
+  ++fixture.list.version;
+  assembler.assemble(fixture.state, force, &matrices);
+  EXPECT_EQ(assembler.timings().patternBuilds, 2);
+  EXPECT_EQ(assembler.timings().colorings, 2);
+  EXPECT_NE(matrices.patternVersion, firstVersion);
+  // Every active node already has its diagonal block; the new item adds blocks (4,5), (5,4).
+  EXPECT_EQ(matrices.free.nonZeros(), firstNonZeros + 2 * 9);
+
+  // A new item list with the same node graph keeps the pattern version (no new analysis).
+  const std::uint64_t secondVersion = matrices.patternVersion;
+  fixture.list.items.push_back({5, 4});
+  ++fixture.list.version;
+  assembler.assemble(fixture.state, force, &matrices);
+  EXPECT_EQ(assembler.timings().patternBuilds, 3);
+  EXPECT_EQ(matrices.patternVersion, secondVersion);
+
+  // Residual-only assemblies never build a pattern.
+  for (int k = 0; k < 2; ++k) assembler.assemble(fixture.state, force, nullptr);
+  EXPECT_EQ(assembler.timings().patternBuilds, 3);
+  EXPECT_EQ(assembler.timings().assemblies, 7);
+}
+
+TEST(Assembler, ReportsTheFirstFailingItemByContributionName) {
+  ListFixture fixture;
+  fixture.list.failing = {2, 1};
+  Assembler assembler(fixture.dofs, {&fixture.list});
+  Eigen::VectorXd force;
+  SystemMatrices matrices;
+  try {
+    assembler.assemble(fixture.state, force, &matrices);
+    FAIL() << "expected StepFailure";
+  } catch (const StepFailure& failure) {
+    EXPECT_EQ(failure.kind(), FailureKind::InvertedElement);
+    EXPECT_STREQ(failure.what(), "list item 1: det J = -1 at point 3");
+  }
+}
+
+TEST(Assembler, NonFiniteLocalForceIsCaughtAndNamed) {
+  ListFixture fixture;
+  fixture.list.nanItem = 2;
+  Assembler assembler(fixture.dofs, {&fixture.list});
+  Eigen::VectorXd force;
+  try {
+    assembler.assemble(fixture.state, force, nullptr);
+    FAIL() << "expected StepFailure";
+  } catch (const StepFailure& failure) {
+    EXPECT_EQ(failure.kind(), FailureKind::NotFinite);
+    EXPECT_NE(std::string(failure.what()).find("list item 2"), std::string::npos);
+  }
+}
+
+TEST(Assembler, SymmetryFlagIsTheAndOfAllContributions) {
+  ListFixture fixture;
+  ListContribution second;
+  second.items = {{2, 3}};
+  second.symmetric = false;
+  Assembler assembler(fixture.dofs, {&fixture.list, &second});
+  Eigen::VectorXd force;
+  SystemMatrices matrices;
+  assembler.assemble(fixture.state, force, &matrices);
+  EXPECT_FALSE(matrices.symmetric);
+  // Node 2 gets 1 from item {1,2} of the first list and 1 from the second contribution.
+  EXPECT_EQ(force.segment<3>(6), Eigen::Vector3d::Constant(2.0));
+}
+
+}  // namespace
+}  // namespace cc

@@ -1,0 +1,175 @@
+// Linear solvers: CHOLMOD and UMFPACK against dense references, the CHOLMOD -> UMFPACK fallback
+// for symmetric indefinite systems, singular systems, and reuse of the symbolic analysis.
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+
+#include "common/errors.hpp"
+#include "solver/linear_solver.hpp"
+#include "solver/tangent_solver.hpp"
+
+namespace cc {
+namespace {
+
+// 5-point Laplacian on an n x n grid with Dirichlet boundary, minus shift * I, full storage.
+SparseMatrix gridLaplacian(int n, double shift) {
+  std::vector<Eigen::Triplet<double>> entries;
+  auto index = [n](int i, int j) { return i + n * j; };
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      entries.emplace_back(index(i, j), index(i, j), 4.0 - shift);
+      if (i + 1 < n) {
+        entries.emplace_back(index(i, j), index(i + 1, j), -1.0);
+        entries.emplace_back(index(i + 1, j), index(i, j), -1.0);
+      }
+      if (j + 1 < n) {
+        entries.emplace_back(index(i, j), index(i, j + 1), -1.0);
+        entries.emplace_back(index(i, j + 1), index(i, j), -1.0);
+      }
+    }
+  SparseMatrix matrix(n * n, n * n);
+  matrix.setFromTriplets(entries.begin(), entries.end());
+  matrix.makeCompressed();
+  return matrix;
+}
+
+// Stiffness of a chain of springs with the given stiffnesses and free ends (one rigid mode).
+SparseMatrix freeChain(const std::vector<double>& stiffness) {
+  const int n = static_cast<int>(stiffness.size()) + 1;
+  std::vector<Eigen::Triplet<double>> entries;
+  for (int s = 0; s + 1 < n; ++s) {
+    entries.emplace_back(s, s, stiffness[s]);
+    entries.emplace_back(s + 1, s + 1, stiffness[s]);
+    entries.emplace_back(s, s + 1, -stiffness[s]);
+    entries.emplace_back(s + 1, s, -stiffness[s]);
+  }
+  SparseMatrix matrix(n, n);
+  matrix.setFromTriplets(entries.begin(), entries.end());
+  matrix.makeCompressed();
+  return matrix;
+}
+
+Eigen::VectorXd rightHandSide(Eigen::Index size) {
+  Eigen::VectorXd rhs(size);
+  for (Eigen::Index k = 0; k < size; ++k) rhs[k] = std::sin(1.0 + static_cast<double>(k));
+  return rhs;
+}
+
+double relativeResidual(const SparseMatrix& matrix, const Eigen::VectorXd& x,
+                        const Eigen::VectorXd& rhs) {
+  return (matrix * x - rhs).norm() / rhs.norm();
+}
+
+SystemMatrices systemOf(SparseMatrix matrix, bool symmetric, std::uint64_t version) {
+  SystemMatrices system;
+  system.free = std::move(matrix);
+  system.symmetric = symmetric;
+  system.patternVersion = version;
+  return system;
+}
+
+TEST(LinearSolver, CholmodSolvesSpdSystemWithEveryOrdering) {
+  const SparseMatrix matrix = gridLaplacian(12, 0.0);
+  const Eigen::VectorXd rhs = rightHandSide(matrix.rows());
+  const Eigen::VectorXd reference = Eigen::MatrixXd(matrix).ldlt().solve(rhs);
+  for (CholmodOrdering ordering : {CholmodOrdering::Amd, CholmodOrdering::Metis,
+                                   CholmodOrdering::NestedDissection, CholmodOrdering::Automatic}) {
+    auto solver = makeCholmodSolver(ordering);
+    solver->analyzePattern(matrix);
+    solver->factorize(matrix);
+    const Eigen::VectorXd x = solver->solve(rhs);
+    EXPECT_LT((x - reference).norm(), 1e-12 * reference.norm());
+    EXPECT_EQ(solver->statistics().analyses, 1);
+    EXPECT_EQ(solver->statistics().factorizations, 1);
+    EXPECT_EQ(solver->statistics().solves, 1);
+  }
+}
+
+TEST(LinearSolver, UmfpackSolvesUnsymmetricSystem) {
+  SparseMatrix matrix = gridLaplacian(10, 0.0);
+  // Unsymmetric perturbation: upwind convection-like coupling on the first off-diagonal.
+  for (int k = 0; k + 1 < matrix.rows(); ++k) matrix.coeffRef(k, k + 1) += 0.3 * (k % 3 == 0);
+  matrix.makeCompressed();
+  const Eigen::VectorXd rhs = rightHandSide(matrix.rows());
+  auto solver = makeUmfpackSolver();
+  solver->analyzePattern(matrix);
+  solver->factorize(matrix);
+  const Eigen::VectorXd x = solver->solve(rhs);
+  const Eigen::VectorXd reference = Eigen::MatrixXd(matrix).partialPivLu().solve(rhs);
+  EXPECT_LT((x - reference).norm(), 1e-12 * reference.norm());
+}
+
+TEST(TangentSolver, IndefiniteSymmetricSystemFallsBackToUmfpackForTheRestOfTheStep) {
+  const SparseMatrix matrix = gridLaplacian(10, 1.0);  // eigenvalues on both sides of 0
+  const Eigen::VectorXd rhs = rightHandSide(matrix.rows());
+  const SystemMatrices system = systemOf(matrix, true, 1);
+  TangentSolver solver;
+  solver.factorize(system);
+  EXPECT_EQ(solver.activeBackend(), "UMFPACK");
+  EXPECT_EQ(solver.choleskyFallbacks(), 1);
+  EXPECT_LT(relativeResidual(matrix, solver.solve(rhs), rhs), 1e-13);
+
+  solver.factorize(system);  // same step: straight to UMFPACK
+  EXPECT_EQ(solver.statistics().factorizations, 3);
+
+  // A new step tries CHOLMOD again, which works once the matrix is positive definite (and
+  // CHOLMOD refactorizes after its failed attempt with the same symbolic analysis).
+  solver.beginStep();
+  const SparseMatrix definite = gridLaplacian(10, 0.0);
+  const SystemMatrices definiteSystem = systemOf(definite, true, 1);
+  solver.factorize(definiteSystem);
+  EXPECT_EQ(solver.activeBackend(), "CHOLMOD");
+  EXPECT_LT(relativeResidual(definite, solver.solve(rhs), rhs), 1e-13);
+  EXPECT_EQ(solver.statistics().analyses, 2);  // one per backend
+}
+
+TEST(TangentSolver, ExactlySingularSystemIsReportedByBothBackends) {
+  const SystemMatrices system = systemOf(freeChain({1.0, 2.0, 1.0, 3.0}), true, 7);
+  TangentSolver solver;
+  try {
+    solver.factorize(system);
+    FAIL() << "expected StepFailure";
+  } catch (const StepFailure& failure) {
+    EXPECT_EQ(failure.kind(), FailureKind::SingularSystem);
+    const std::string message = failure.what();
+    EXPECT_NE(message.find("CHOLMOD: tangent not positive definite"), std::string::npos);
+    EXPECT_NE(message.find("UMFPACK"), std::string::npos);
+  }
+}
+
+TEST(TangentSolver, RoundedSingularSystemIsCaughtByThePivotRatio) {
+  // Stiffnesses that are not exact binary fractions: the zero pivot comes out as round-off.
+  std::vector<double> stiffness;
+  for (int s = 0; s < 40; ++s)
+    stiffness.push_back(0.1 + 0.37 * std::sin(3.0 * s) * std::sin(3.0 * s));
+  const SystemMatrices system = systemOf(freeChain(stiffness), false, 3);
+  TangentSolver solver;
+  EXPECT_THROW(solver.factorize(system), StepFailure);
+  const SystemMatrices symmetricSystem = systemOf(freeChain(stiffness), true, 3);
+  EXPECT_THROW(solver.factorize(symmetricSystem), StepFailure);
+}
+
+TEST(TangentSolver, SymbolicAnalysisRepeatedOnlyWhenThePatternVersionChanges) {
+  SparseMatrix matrix = gridLaplacian(8, 0.0);
+  const Eigen::VectorXd rhs = rightHandSide(matrix.rows());
+  TangentSolver solver;
+  for (int iteration = 1; iteration <= 10; ++iteration) {
+    matrix.coeffs() *= 1.1;  // new values, same pattern
+    const SystemMatrices system = systemOf(matrix, true, 42);
+    solver.factorize(system);
+    EXPECT_LT(relativeResidual(matrix, solver.solve(rhs), rhs), 1e-13);
+  }
+  EXPECT_EQ(solver.statistics().analyses, 1);
+  EXPECT_EQ(solver.statistics().factorizations, 10);
+  const SystemMatrices changed = systemOf(gridLaplacian(9, 0.0), true, 43);
+  solver.factorize(changed);
+  EXPECT_EQ(solver.statistics().analyses, 2);
+  // Unsymmetric systems go to UMFPACK with its own analysis.
+  const SystemMatrices unsymmetric = systemOf(gridLaplacian(9, 0.0), false, 43);
+  solver.factorize(unsymmetric);
+  EXPECT_EQ(solver.activeBackend(), "UMFPACK");
+  EXPECT_EQ(solver.statistics().analyses, 3);
+}
+
+}  // namespace
+}  // namespace cc

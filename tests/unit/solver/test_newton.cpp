@@ -1,0 +1,188 @@
+// Newton: the FEAP predictor (K_fp du_p) solves a linear chain in one iteration; a hardening
+// chain converges quadratically to its closed-form solution with the documented iteration
+// counts per criterion; line search and divergence detection.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "solver/newton.hpp"
+#include "spring_chain.hpp"
+
+namespace cc {
+namespace {
+
+using test::RecordingObserver;
+using test::SpringChain;
+using test::SpringLaw;
+
+NewtonResult solveStep(SpringChain& chain, RecordingObserver& observer, const NewtonSpec& spec,
+                       Eigen::VectorXd& displacement, double time, double previousTime = 0) {
+  Newton newton(chain, observer, Newton::Clock::now());
+  return newton.solve({1, 0, time, previousTime}, spec, displacement);
+}
+
+NewtonSpec withCriterion(NewtonSpec::Criterion criterion) {
+  NewtonSpec spec;
+  spec.criterion = criterion;
+  return spec;
+}
+
+TEST(Newton, PrescribedEndOfLinearChainSolvedByThePredictor) {
+  const int springs = 5;
+  const double stiffness = 2.0, endDisplacement = 0.5;
+  for (auto criterion : {NewtonSpec::Criterion::Residual, NewtonSpec::Criterion::Energy}) {
+    SpringChain chain(springs, SpringLaw::linear(stiffness),
+                      [&](double t) { return endDisplacement * t; });
+    RecordingObserver observer;
+    Newton newton(chain, observer, Newton::Clock::now());
+    Eigen::VectorXd u = Eigen::VectorXd::Zero(3 * (springs + 1));
+    const NewtonResult result = newton.solve({1, 0, 1.0, 0.0}, withCriterion(criterion), u);
+    ASSERT_EQ(result.status, NewtonResult::Status::Converged) << result.message;
+    // Residual: seen at the start of iteration 2 -> 1; Energy: FEAP's confirming solve -> 2.
+    EXPECT_EQ(result.iterations, criterion == NewtonSpec::Criterion::Residual ? 1 : 2);
+    for (int node = 0; node <= springs; ++node) {
+      EXPECT_NEAR(u[3 * node], endDisplacement * node / springs, 1e-14);
+    }
+    // Force at the displaced end (the reaction): k D / n.
+    EXPECT_NEAR(newton.internalForce()[3 * springs], stiffness * endDisplacement / springs, 1e-14);
+  }
+}
+
+TEST(Newton, StepStartingInEquilibriumTakesOneIteration) {
+  SpringChain chain(3, SpringLaw::cubic(1.0, 1.0), [](double t) { return 0.2 * std::min(t, 1.0); });
+  RecordingObserver observer;
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(12);
+  Newton newton(chain, observer, Newton::Clock::now());
+  ASSERT_EQ(newton.solve({1, 0, 1.0, 0.0}, NewtonSpec{}, u).status,
+            NewtonResult::Status::Converged);
+  const Eigen::VectorXd converged = u;
+  const NewtonResult hold = newton.solve({2, 0, 2.0, 1.0}, NewtonSpec{}, u);
+  ASSERT_EQ(hold.status, NewtonResult::Status::Converged);
+  EXPECT_EQ(hold.iterations, 1);
+  EXPECT_LT((u - converged).norm(), 1e-15);
+  // End reaction of the prescribed displacement 0.2 over 3 springs: N(d) = d + d^3, d = 0.2/3.
+  const double extension = 0.2 / 3;
+  EXPECT_NEAR(newton.internalForce()[9], extension + std::pow(extension, 3), 1e-14);
+}
+
+// Iteration counts of scalar Newton on g(d) = k (d + a d^3) - F from d = 0, counted as
+// documented in newton.hpp (the chain's springs all follow this iteration).
+struct ScalarCounts {
+  int energy = 0, residual = 0, either = 0, both = 0;
+};
+
+ScalarCounts scalarNewtonCounts(double k, double a, double force, const NewtonSpec& spec) {
+  ScalarCounts counts;
+  double d = 0, firstResidual = 0, firstEnergy = 0;
+  int residualAt = 0, energyAt = 0;
+  for (int iteration = 1; iteration <= spec.maxIterations; ++iteration) {
+    const double residual = std::abs(k * (d + a * d * d * d) - force);
+    if (iteration == 1) firstResidual = residual;
+    if (!residualAt && iteration > 1 && residual <= spec.residualTolerance * firstResidual) {
+      residualAt = iteration;
+    }
+    if (iteration > 1 && residual <= spec.residualTolerance * firstResidual && energyAt &&
+        !counts.both) {
+      counts.both = energyAt;
+    }
+    const double increment = -(k * (d + a * d * d * d) - force) / (k * (1 + 3 * a * d * d));
+    const double energy = std::abs(increment * residual);
+    if (iteration == 1) firstEnergy = energy;
+    d += increment;
+    const bool energyMet = energy <= spec.energyTolerance * firstEnergy;
+    if (energyMet && !energyAt) energyAt = iteration;
+    if (energyMet && iteration > 1 && residual <= spec.residualTolerance * firstResidual &&
+        !counts.both) {
+      counts.both = iteration;
+    }
+    if (energyAt && residualAt && counts.both) break;
+  }
+  counts.energy = energyAt;
+  counts.residual = residualAt - 1;
+  counts.either = residualAt && residualAt <= energyAt ? residualAt - 1 : energyAt;
+  return counts;
+}
+
+TEST(Newton, HardeningChainConvergesQuadraticallyToTheClosedFormSolution) {
+  const int springs = 4;
+  const double k = 1.0, a = 1.0, force = 2.0;  // k (d + a d^3) = F at d = 1
+  const double extension = 1.0;
+  // Newton's constant for the residual: r_{k+1} ~ C r_k^2, C = |g''| / (2 g'^2) at the root.
+  const double slope = k * (1 + 3 * a * extension * extension);
+  const double quadraticConstant = 6 * k * a * extension / (2 * slope * slope);
+  const double quadraticBound = 10 * quadraticConstant;
+
+  NewtonSpec spec;
+  spec.residualTolerance = 1e-8;
+  const ScalarCounts expected = scalarNewtonCounts(k, a, force, spec);
+  for (auto criterion : {NewtonSpec::Criterion::Energy, NewtonSpec::Criterion::Residual,
+                         NewtonSpec::Criterion::Either, NewtonSpec::Criterion::Both}) {
+    spec.criterion = criterion;
+    SpringChain chain(springs, SpringLaw::cubic(k, a), {}, [&](double t) { return force * t; });
+    RecordingObserver observer;
+    Eigen::VectorXd u = Eigen::VectorXd::Zero(3 * (springs + 1));
+    const NewtonResult result = solveStep(chain, observer, spec, u, 1.0);
+    ASSERT_EQ(result.status, NewtonResult::Status::Converged) << result.message;
+    const int expectedIterations = criterion == NewtonSpec::Criterion::Energy ? expected.energy
+                                   : criterion == NewtonSpec::Criterion::Residual
+                                       ? expected.residual
+                                   : criterion == NewtonSpec::Criterion::Either ? expected.either
+                                                                                : expected.both;
+    EXPECT_EQ(result.iterations, expectedIterations) << "criterion " << static_cast<int>(criterion);
+    EXPECT_EQ(observer.iterations.size(), static_cast<std::size_t>(result.iterations));
+    EXPECT_NEAR(u[3 * springs], springs * extension, 1e-7);
+    if (criterion != NewtonSpec::Criterion::Energy) continue;
+    EXPECT_NEAR(u[3 * springs], springs * extension, 1e-13);
+
+    // Quadratic convergence over the asymptotic iterations (residual below the initial one,
+    // next residual above round-off).
+    int measured = 0;
+    const auto& records = observer.iterations;
+    for (std::size_t i = 1; i + 1 < records.size(); ++i) {
+      const double current = records[i].residualNorm, next = records[i + 1].residualNorm;
+      if (current >= records[0].residualNorm || next < 1e-12) continue;
+      EXPECT_LT(next / (current * current), quadraticBound) << "iteration " << i + 1;
+      ++measured;
+    }
+    EXPECT_GE(measured, 3);
+  }
+}
+
+TEST(Newton, LineSearchRescuesFullStepsThatOvershootOnASofteningSpring) {
+  // One atan spring loaded by F = atan(0.5), started at d = 5 on the plateau: the full Newton
+  // step jumps to d = -18.6 and the iteration runs away; halving the step keeps it near.
+  const double force = std::atan(0.5);
+  for (bool lineSearch : {false, true}) {
+    SpringChain chain(1, SpringLaw::arctangent(), {}, [&](double) { return force; });
+    RecordingObserver observer;
+    Eigen::VectorXd u = Eigen::VectorXd::Zero(6);
+    u[3] = 5.0;
+    NewtonSpec spec;
+    spec.lineSearch = lineSearch;
+    spec.maxIterations = 12;
+    const NewtonResult result = solveStep(chain, observer, spec, u, 1.0);
+    if (!lineSearch) {
+      EXPECT_EQ(result.status, NewtonResult::Status::Failed);
+      continue;
+    }
+    ASSERT_EQ(result.status, NewtonResult::Status::Converged) << result.message;
+    EXPECT_NEAR(u[3], 0.5, 1e-12);
+  }
+}
+
+TEST(Newton, ResidualGrowthBeyondTheDivergenceFactorFails) {
+  const double force = std::atan(0.5);
+  SpringChain chain(1, SpringLaw::arctangent(), {}, [&](double) { return force; });
+  RecordingObserver observer;
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(6);
+  u[3] = 5.0;
+  NewtonSpec spec;
+  spec.divergenceFactor = 1.5;  // |atan(-18.6) - F| / |atan(5) - F| = 2.2 at iteration 2
+  const NewtonResult result = solveStep(chain, observer, spec, u, 1.0);
+  EXPECT_EQ(result.status, NewtonResult::Status::Failed);
+  EXPECT_EQ(result.failure, FailureKind::Diverged);
+  EXPECT_EQ(result.iterations, 2);
+}
+
+}  // namespace
+}  // namespace cc
