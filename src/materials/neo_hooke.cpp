@@ -1,0 +1,69 @@
+// Compressible neo-Hooke material, W = mu/2 (I1 - 3) - mu ln J + lambda/2 (ln J)^2, written in the
+// reference configuration: S = mu (I - C^-1) + lambda ln J C^-1 and its consistent tangent.
+#include <Eigen/LU>
+#include <cmath>
+#include <memory>
+
+#include "materials/isotropic.hpp"
+#include "materials/material.hpp"
+#include "materials/voigt.hpp"
+
+namespace cc {
+namespace {
+
+class NeoHooke final : public Material {
+ public:
+  NeoHooke(double youngsModulus, double poissonRatio)
+      : youngsModulus_(youngsModulus),
+        poissonRatio_(poissonRatio),
+        lame_(lameParameters(youngsModulus, poissonRatio)) {}
+
+  std::string name() const override { return "neo_hooke"; }
+
+  // C = I + 2E must be positive definite; det C <= 0 (no admissible J) is reported as failure.
+  bool evaluate(const Vector6d& strainVoigt, Vector6d& stressVoigt,
+                Matrix6d* tangent) const override {
+    const Eigen::Matrix3d C = Eigen::Matrix3d::Identity() + 2.0 * strainFromVoigt(strainVoigt);
+    const double detC = C.determinant();
+    if (!(detC > 0.0)) return false;
+    const Eigen::Matrix3d Cinv = C.inverse();
+    const double logJ = 0.5 * std::log(detC);
+    const double lambda = lame_.lambda;
+    const double mu = lame_.mu;
+
+    stressVoigt = voigtFromStress(mu * (Eigen::Matrix3d::Identity() - Cinv) + lambda * logJ * Cinv);
+    if (tangent != nullptr) {
+      // D = 2 dS/dC = lambda C^-1 (x) C^-1 + 2 (mu - lambda ln J) I_{C^-1}, with
+      // (I_{C^-1})_ijkl = (C^-1_ik C^-1_jl + C^-1_il C^-1_jk) / 2 from d(C^-1)/dC.
+      const Vector6d CinvVoigt = voigtFromStress(Cinv);
+      const double shearFactor = mu - lambda * logJ;
+      for (int I = 0; I < 6; ++I) {
+        const auto [i, j] = kVoigtPairs[I];
+        for (int J = I; J < 6; ++J) {
+          const auto [k, l] = kVoigtPairs[J];
+          const double value = lambda * CinvVoigt[I] * CinvVoigt[J] +
+                               shearFactor * (Cinv(i, k) * Cinv(j, l) + Cinv(i, l) * Cinv(j, k));
+          (*tangent)(I, J) = value;
+          (*tangent)(J, I) = value;
+        }
+      }
+    }
+    return true;
+  }
+
+  double youngsModulus() const override { return youngsModulus_; }
+  double poissonRatio() const override { return poissonRatio_; }
+
+ private:
+  double youngsModulus_;
+  double poissonRatio_;
+  LameParameters lame_;
+};
+
+}  // namespace
+
+std::unique_ptr<Material> makeNeoHooke(double youngsModulus, double poissonRatio) {
+  return std::make_unique<NeoHooke>(youngsModulus, poissonRatio);
+}
+
+}  // namespace cc

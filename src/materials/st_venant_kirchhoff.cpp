@@ -1,0 +1,43 @@
+// St. Venant-Kirchhoff material: Hooke's law between the Green-Lagrange strain and the second
+// Piola-Kirchhoff stress, S = lambda tr(E) I + 2 mu E, with a constant tangent.
+#include <memory>
+
+#include "materials/isotropic.hpp"
+#include "materials/material.hpp"
+
+namespace cc {
+namespace {
+
+class StVenantKirchhoff final : public Material {
+ public:
+  StVenantKirchhoff(double youngsModulus, double poissonRatio)
+      : youngsModulus_(youngsModulus),
+        poissonRatio_(poissonRatio),
+        hooke_(hookeMatrix(lameParameters(youngsModulus, poissonRatio))) {}
+
+  std::string name() const override { return "svk"; }
+
+  // Defined for every strain (it is linear), so it never reports failure.
+  bool evaluate(const Vector6d& strainVoigt, Vector6d& stressVoigt,
+                Matrix6d* tangent) const override {
+    stressVoigt.noalias() = hooke_ * strainVoigt;
+    if (tangent != nullptr) *tangent = hooke_;
+    return true;
+  }
+
+  double youngsModulus() const override { return youngsModulus_; }
+  double poissonRatio() const override { return poissonRatio_; }
+
+ private:
+  double youngsModulus_;
+  double poissonRatio_;
+  Matrix6d hooke_;
+};
+
+}  // namespace
+
+std::unique_ptr<Material> makeStVenantKirchhoff(double youngsModulus, double poissonRatio) {
+  return std::make_unique<StVenantKirchhoff>(youngsModulus, poissonRatio);
+}
+
+}  // namespace cc
