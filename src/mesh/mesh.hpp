@@ -3,6 +3,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstddef>
 #include <map>
 #include <string>
 #include <vector>
@@ -28,6 +29,7 @@ struct ElementBlock {
   std::string name;
   CellType type = CellType::Hex8;
   Connectivity connectivity;  // one row per element, 0-based node indices
+  std::vector<std::size_t> gmshElementTags;  // per element, for messages; empty if not from gmsh
 };
 
 // Boundary faces of one gmsh physical surface group, each oriented with its normal pointing out
@@ -38,6 +40,7 @@ struct FaceSet {
   Connectivity connectivity;        // one row per face
   std::vector<int> ownerBlock;      // index into Mesh::blocks of the adjacent volume element
   std::vector<int> ownerElement;    // element index within that block
+  std::vector<std::size_t> gmshElementTags;  // per face, for messages; empty if not from gmsh
 };
 
 struct NodeSet {
@@ -50,6 +53,7 @@ struct Mesh {
   std::vector<ElementBlock> blocks;
   std::map<std::string, FaceSet> faceSets;
   std::map<std::string, NodeSet> nodeSets;  // every physical group also yields a node set
+  std::vector<std::size_t> gmshNodeTags;    // per node, for messages; empty if not from gmsh
 
   int numNodes() const { return static_cast<int>(coordinates.cols()); }
   const ElementBlock* findBlock(const std::string& name) const;
