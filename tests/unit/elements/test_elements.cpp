@@ -11,6 +11,7 @@
 #include <iostream>
 #include <limits>
 #include <memory>
+#include <numbers>
 #include <ostream>
 #include <vector>
 
@@ -56,7 +57,8 @@ INSTANTIATE_TEST_SUITE_P(Hex8, Hex8WithMaterial, ::testing::Values(kSvk, kNeoHoo
                          [](const auto& info) { return std::string(info.param.name); });
 
 Matrix3d rotation(double angleDegrees, const Vector3d& axis) {
-  return Eigen::AngleAxisd(angleDegrees * M_PI / 180.0, axis.normalized()).toRotationMatrix();
+  return Eigen::AngleAxisd(angleDegrees * std::numbers::pi / 180.0, axis.normalized())
+      .toRotationMatrix();
 }
 
 // Unit cube [0,1]^3 in gmsh order with every node moved: a general (non-parallelepiped) hex.

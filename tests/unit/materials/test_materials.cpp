@@ -9,6 +9,7 @@
 #include <functional>
 #include <limits>
 #include <memory>
+#include <numbers>
 #include <ostream>
 #include <stdexcept>
 
@@ -54,7 +55,8 @@ INSTANTIATE_TEST_SUITE_P(
     [](const auto& info) { return std::string(info.param.name); });
 
 Matrix3d rotation(double angleDegrees, const Vector3d& axis) {
-  return Eigen::AngleAxisd(angleDegrees * M_PI / 180.0, axis.normalized()).toRotationMatrix();
+  return Eigen::AngleAxisd(angleDegrees * std::numbers::pi / 180.0, axis.normalized())
+      .toRotationMatrix();
 }
 
 // Large-strain states: stretch 1.5 with shear 0.5, a compressed and sheared one, a mild one.
