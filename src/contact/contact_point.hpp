@@ -34,9 +34,23 @@ struct PointLayout {
   int nodeCount = 0;            // size of the item's node list
 };
 
+// History of a contact point, committed only when a step converges (DESIGN.md).
+struct PointHistory {
+  bool projected = false;  // a projection existed at the last converged step
+  int segment = -1;        // master segment of that projection (NTS/STS)
+  Eigen::Vector2d xi = Eigen::Vector2d::Zero();
+  Eigen::Vector3d traction = Eigen::Vector3d::Zero();     // T^(n), Cartesian, eq. (49)
+  Eigen::Vector2d tractionCovariant = Eigen::Vector2d::Zero();  // T_i^(n) (convective update)
+  Eigen::Vector3d masterPoint = Eigen::Vector3d::Zero();  // STAS: rho at step n
+  Eigen::Vector3d surfaceOffset = Eigen::Vector3d::Zero();  // STAS: rigid translation at step n
+  PointState state = PointState::Open;
+  double accumulatedSlip = 0;
+};
+
 template <class Scalar>
 struct PointKinematics {
   SurfaceFrame<Scalar> frame;            // master frame at the contact point
+  Eigen::Matrix<Scalar, 2, 1> xi;        // its parameter on the master segment
   std::array<Scalar, 9> masterShape{};   // N_m(xi) (xi may depend on the nodes)
   Vec3<Scalar> slavePoint;               // r_s
   Scalar gap;                            // g, eq. (27) (STAS: xi^3 of eq. (117))
@@ -55,8 +69,7 @@ struct PointResponse {
 // Normal penalty, trial step and return mapping at one point, Table 1 / Table 2.
 template <class Scalar>
 PointResponse<Scalar> pointResponse(const PointKinematics<Scalar>& kin,
-                                    const Eigen::Vector3d& previousTraction,
-                                    const LawParameters& law) {
+                                    const PointHistory& history, const LawParameters& law) {
   PointResponse<Scalar> response;
   if (kin.gap > 0) return response;  // open: g > 0, no traction (Table 1, loop 3)
   response.normal = normalTraction(kin.gap, law.penaltyNormal);
@@ -67,7 +80,11 @@ PointResponse<Scalar> pointResponse(const PointKinematics<Scalar>& kin,
   response.tangential.vector.setZero();
   if (law.friction > 0) {
     response.frictional = true;
-    const auto trial = trialTraction(kin.frame, previousTraction, kin.slip, law.penaltyTangential);
+    const auto trial =
+        law.integration == TangentialIntegration::ParallelTranslation
+            ? trialTraction(kin.frame, history.traction, kin.slip, law.penaltyTangential)
+            : convectiveTrialTraction(kin.frame, history.tractionCovariant, kin.xi, history.xi,
+                                      law.penaltyTangential);
     response.tangential = returnMapping(kin.frame, trial, response.normal, law.friction);
     response.state = response.tangential.state;
   }

@@ -30,7 +30,7 @@ bool hasKinematics(const std::optional<T>& kin) { return kin.has_value(); }
 // optional of it), called here with Scalar = AutoDiff. K is sized here (3n x 3n).
 template <class KinematicsFn>
 void exactTangent(const NodeMatrix<double>& nodes, const PointLayout& layout,
-                  const Eigen::Vector3d& previousTraction, const LawParameters& law,
+                  const PointHistory& history, const LawParameters& law,
                   KinematicsFn&& kinematics, Eigen::MatrixXd& K) {
   const int dofs = 3 * layout.nodeCount;
   K.setZero(dofs, dofs);
@@ -43,7 +43,7 @@ void exactTangent(const NodeMatrix<double>& nodes, const PointLayout& layout,
   const auto kinematicsResult = kinematics(active);
   if (!detail::hasKinematics(kinematicsResult)) return;
   const PointKinematics<AutoDiff>& kin = detail::unwrapKinematics(kinematicsResult);
-  const PointResponse<AutoDiff> response = pointResponse(kin, previousTraction, law);
+  const PointResponse<AutoDiff> response = pointResponse(kin, history, law);
   Eigen::Matrix<AutoDiff, Eigen::Dynamic, 1> force;
   pointForce(kin, response, layout, force);
   for (int row = 0; row < dofs; ++row) {

@@ -13,10 +13,18 @@ namespace cc::contact {
 
 enum class PointState { Open = 0, Stick = 1, Slip = 2 };
 
+// How the trial traction carries the last converged traction into the current step.
+enum class TangentialIntegration {
+  ParallelTranslation,  // eqs. (51), (77): continuous across segment boundaries (the default)
+  Convective,           // eq. (75): covariant components kept as numbers; jumps across
+                        // segments with differing parametrizations (for comparison only)
+};
+
 struct LawParameters {
   double penaltyNormal = 0;      // eps_N
   double penaltyTangential = 0;  // eps_T
   double friction = 0;           // mu
+  TangentialIntegration integration = TangentialIntegration::ParallelTranslation;
 };
 
 // Eqs. (62)-(63): N = eps_N <g>, Macaulay bracket <g> = g for g <= 0, 0 otherwise. N <= 0.
@@ -49,6 +57,18 @@ Eigen::Matrix<Scalar, 2, 1> trialTraction(const SurfaceFrame<Scalar>& frame,
                penaltyTangential * slip.dot(frame.rhoCov[i]);
   }
   return trial;
+}
+
+// Eq. (75): the naive convective update (T^tr)_i = T_i^(n) - eps_T a_ij (xi^j_(n+1) - xi^j_(n)),
+// with the parameters of whatever segments the point was on.
+template <class Scalar>
+Eigen::Matrix<Scalar, 2, 1> convectiveTrialTraction(const SurfaceFrame<Scalar>& frame,
+                                                    const Eigen::Vector2d& previousCovariant,
+                                                    const Eigen::Matrix<Scalar, 2, 1>& xi,
+                                                    const Eigen::Vector2d& previousXi,
+                                                    double penaltyTangential) {
+  const Eigen::Matrix<Scalar, 2, 1> increment = xi - previousXi.cast<Scalar>();
+  return previousCovariant.cast<Scalar>() - penaltyTangential * (frame.metric * increment);
 }
 
 // Eq. (65): ||T|| = sqrt(T_i T_j a^ij).

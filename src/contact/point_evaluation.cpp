@@ -45,7 +45,7 @@ PointEvaluation evaluatePoint(const PointSetup& setup, const NodeMatrix<double>&
         projectedPointKinematics(nodes, setup.layout, setup.slave, e.xi, setup.history);
   }
   e.valid = true;
-  e.response = pointResponse(e.kinematics, setup.history.traction, setup.law);
+  e.response = pointResponse(e.kinematics, setup.history, setup.law);
   pointForce(e.kinematics, e.response, setup.layout, e.force);
   return e;
 }
@@ -64,7 +64,7 @@ void pointTangent(const PointSetup& setup, const NodeMatrix<double>& nodes,
     return;
   }
   if (setup.kind == PointKind::SegmentToAnalytical) {
-    exactTangent(nodes, setup.layout, setup.history.traction, setup.law,
+    exactTangent(nodes, setup.layout, setup.history, setup.law,
                  [&](const auto& active) {
                    return analyticalSurfaceKinematics(active, setup.layout, setup.parameter,
                                                       setup.gaussWeight, *setup.surface,
@@ -73,7 +73,7 @@ void pointTangent(const PointSetup& setup, const NodeMatrix<double>& nodes,
                  K);
     return;
   }
-  exactTangent(nodes, setup.layout, setup.history.traction, setup.law,
+  exactTangent(nodes, setup.layout, setup.history, setup.law,
                [&](const auto& active) {
                  return projectedPointKinematics(active, setup.layout, setup.slave,
                                                  evaluation.xi, setup.history);

@@ -14,18 +14,6 @@
 
 namespace cc::contact {
 
-// History of a contact point, committed only when a step converges (DESIGN.md).
-struct PointHistory {
-  bool projected = false;  // a projection existed at the last converged step
-  int segment = -1;        // master segment of that projection (NTS/STS)
-  Eigen::Vector2d xi = Eigen::Vector2d::Zero();
-  Eigen::Vector3d traction = Eigen::Vector3d::Zero();     // T^(n), Cartesian, eq. (49)
-  Eigen::Vector3d masterPoint = Eigen::Vector3d::Zero();  // STAS: rho at step n
-  Eigen::Vector3d surfaceOffset = Eigen::Vector3d::Zero();  // STAS: rigid translation at step n
-  PointState state = PointState::Open;
-  double accumulatedSlip = 0;
-};
-
 // How the slave side of a point is described.
 struct SlaveSide {
   // NTS: tributary area of the slave node (reference configuration, held constant).
@@ -97,6 +85,7 @@ PointKinematics<Scalar> projectedPointKinematics(const NodeMatrix<Scalar>& itemN
   const Eigen::Matrix<Scalar, 2, 1> parameter =
       differentiableProjection(layout.masterType, masterNodes, kin.slavePoint, xi);
   detail::setMasterFrame(kin, masterNodes, layout.masterType, parameter[0], parameter[1]);
+  kin.xi = parameter;
   kin.gap = (kin.slavePoint - kin.frame.rho).dot(kin.frame.normal);
   kin.slip =
       detail::slipSincePreviousProjection(itemNodes, layout, masterNodes, history, kin.frame.rho);
@@ -131,6 +120,7 @@ std::optional<PointKinematics<Scalar>> analyticalSurfaceKinematics(
   const NodeMatrix<Scalar> masterNodes =
       detail::gatherNodes(itemNodes, layout.masterLocal, layout.masterCount);
   detail::setMasterFrame(kin, masterNodes, layout.masterType, Scalar(xi[0]), Scalar(xi[1]));
+  kin.xi = xi.cast<Scalar>();
   const std::optional<Scalar> gap =
       normalLineGap(surface, surfaceOffset, kin.frame.rho, kin.frame.normal);
   if (!gap) return std::nullopt;

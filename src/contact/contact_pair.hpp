@@ -1,0 +1,119 @@
+// A contact pair as a Contribution to the global system: its contact points (slave nodes for
+// NTS, slave Gauss points for STS, master Gauss points against a rigid surface for STAS), the
+// segment search that keeps every point on the master segment it projects onto, the point
+// history (xi, rho, T, state, accumulated slip) committed only when a step converges, and the
+// per-step output record.
+#pragma once
+
+#include <atomic>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "contact/master_surface.hpp"
+#include "contact/point_evaluation.hpp"
+#include "fem/contribution.hpp"
+#include "mesh/mesh.hpp"
+#include "output/results.hpp"
+
+namespace cc::contact {
+
+struct ContactPairConfig {
+  std::string name;
+  PointKind kind = PointKind::NodeToSegment;
+  LawParameters law;
+  int integrationPoints = 2;  // Gauss points per direction (STS, STAS)
+  ContactSpec::TangentMode tangentMode = ContactSpec::TangentMode::Paper;
+  TangentParts parts;
+};
+
+// A rigid translation of the STAS surface as a function of time (called serially).
+using SurfaceMotion = std::function<Eigen::Vector3d(double time)>;
+
+class ContactPair : public Contribution {
+ public:
+  static std::unique_ptr<ContactPair> nodeToSegment(ContactPairConfig config, const Mesh& mesh,
+                                                    const FaceSet& master, const FaceSet& slave);
+  static std::unique_ptr<ContactPair> segmentToSegment(ContactPairConfig config,
+                                                       const FaceSet& master,
+                                                       const FaceSet& slave);
+  static std::unique_ptr<ContactPair> segmentToAnalytical(ContactPairConfig config,
+                                                          const FaceSet& master,
+                                                          RigidSurface surface,
+                                                          SurfaceMotion motion);
+
+  std::string name() const override { return config_.name; }
+  LocalStatus prepare(const AssemblyState& state) override;
+  std::size_t itemCount() const override { return points_.size(); }
+  std::span<const int> itemNodes(std::size_t item) const override { return points_[item].nodes; }
+  std::uint64_t topologyVersion() const override { return topologyVersion_; }
+  LocalStatus evaluate(std::size_t item, const AssemblyState& state, Eigen::VectorXd& force,
+                       Eigen::MatrixXd* tangent) override;
+  bool tangentSymmetric() const override;
+  void commitStep() override;
+  void restoreStep() override;
+
+  // Output of the last evaluated (after commit: converged) state.
+  ContactPairRecord record() const;
+  const ContactPairConfig& config() const { return config_; }
+  int pointCount() const { return static_cast<int>(points_.size()); }
+
+ private:
+  // What the last evaluation found at a point (the trial state of the current iteration).
+  struct Trial {
+    bool valid = false;
+    Eigen::Vector2d xi = Eigen::Vector2d::Zero();
+    Eigen::Vector3d slavePoint = Eigen::Vector3d::Zero();
+    Eigen::Vector3d masterPoint = Eigen::Vector3d::Zero();
+    Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+    Eigen::Vector3d traction = Eigen::Vector3d::Zero();  // T (Cartesian)
+    Eigen::Vector2d tractionCovariant = Eigen::Vector2d::Zero();  // T_i
+    double gap = 0;
+    double normalTraction = 0;
+    double weight = 0;
+    double slipIncrement = 0;
+    PointState state = PointState::Open;
+    bool symmetric = true;
+  };
+
+  struct Point {
+    // Slave side (fixed): nodes and shape values at the point; NTS area or STS Gauss point.
+    int slaveCount = 0;
+    std::array<int, 9> slaveNodes{};
+    std::array<double, 9> slaveShape{};
+    SlaveSide slave;
+    // STAS: the fixed master segment and Gauss point.
+    int fixedSegment = -1;
+    Eigen::Vector2d gaussPoint = Eigen::Vector2d::Zero();
+    double gaussWeight = 0;
+    // Search state of the current iteration.
+    int segment = -1;
+    Eigen::Vector2d xi = Eigen::Vector2d::Zero();
+    // The item: node list and where the slave/master/previous-master nodes sit in it.
+    std::vector<int> nodes;
+    PointLayout layout;
+    PointHistory committed;
+    Trial trial;
+  };
+
+  ContactPair(ContactPairConfig config, const FaceSet& master);
+  void buildItem(Point& point) const;
+  Eigen::Vector3d slavePosition(const Point& point, const Eigen::Matrix3Xd& x) const;
+  void searchSegments(const AssemblyState& state);
+  PointSetup setupFor(const Point& point) const;
+  static void storeTrial(Point& point, const PointEvaluation& evaluation, const LawParameters& law);
+
+  ContactPairConfig config_;
+  MasterSurface master_;
+  std::vector<Point> points_;
+  std::uint64_t topologyVersion_ = 1;
+  // STAS
+  RigidSurface surface_;
+  SurfaceMotion motion_;
+  Eigen::Vector3d surfaceOffset_ = Eigen::Vector3d::Zero();
+  // The search grid is rebuilt once per step attempt (the master moves between steps).
+  double gridTime_ = -1;
+};
+
+}  // namespace cc::contact

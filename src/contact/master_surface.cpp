@@ -1,0 +1,148 @@
+// Master surface: segment adjacency, bucket-grid global search, local walk across neighbours.
+#include "contact/master_surface.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <utility>
+
+namespace cc::contact {
+
+namespace {
+
+// Number of edge-neighbour hops a local walk may take before falling back to the global search.
+constexpr int kMaxWalkHops = 64;
+// Parameter tolerance for "inside the segment": points on an edge or vertex belong to both.
+constexpr double kInsideTolerance = 1e-10;
+
+// Corners of edge e in the Quad4/Quad9 numbering: (0,1), (1,2), (2,3), (3,0).
+std::pair<int, int> edgeCorners(int edge) { return {edge, (edge + 1) % 4}; }
+
+// The edges the parameter leaves through, most violated first.
+std::vector<int> violatedEdges(const Eigen::Vector2d& xi) {
+  std::vector<std::pair<double, int>> violations;
+  if (xi[1] < -1) violations.push_back({-1 - xi[1], 0});
+  if (xi[0] > 1) violations.push_back({xi[0] - 1, 1});
+  if (xi[1] > 1) violations.push_back({xi[1] - 1, 2});
+  if (xi[0] < -1) violations.push_back({-1 - xi[0], 3});
+  std::sort(violations.rbegin(), violations.rend());
+  std::vector<int> edges;
+  for (const auto& v : violations) edges.push_back(v.second);
+  return edges;
+}
+
+}  // namespace
+
+MasterSurface::MasterSurface(const FaceSet& faces)
+    : type_(faces.type == CellType::Quad9 ? SegmentType::Quad9 : SegmentType::Quad4),
+      segments_(faces.connectivity),
+      neighbours_(faces.connectivity.rows(), std::array<int, 4>{-1, -1, -1, -1}) {
+  std::map<std::pair<int, int>, std::pair<int, int>> edgeOwner;  // sorted corners -> (seg, edge)
+  for (int s = 0; s < segmentCount(); ++s) {
+    for (int e = 0; e < 4; ++e) {
+      auto [a, b] = edgeCorners(e);
+      std::pair<int, int> key = std::minmax(segments_(s, a), segments_(s, b));
+      auto [it, inserted] = edgeOwner.emplace(key, std::make_pair(s, e));
+      if (!inserted) {
+        neighbours_[s][e] = it->second.first;
+        neighbours_[it->second.first][it->second.second] = s;
+      }
+    }
+  }
+}
+
+NodeMatrix<double> MasterSurface::segmentNodes(int segment,
+                                               const Eigen::Matrix3Xd& coordinates) const {
+  NodeMatrix<double> nodes(3, nodesPerSegment());
+  for (int k = 0; k < nodesPerSegment(); ++k) nodes.col(k) = coordinates.col(segments_(segment, k));
+  return nodes;
+}
+
+MasterSurface::CellKey MasterSurface::cellKey(const Eigen::Vector3i& cell) const {
+  constexpr long long kOffset = 1 << 20;
+  constexpr int kBits = 21;
+  return ((cell.x() + kOffset) << (2 * kBits)) | ((cell.y() + kOffset) << kBits) |
+         (cell.z() + kOffset);
+}
+
+Eigen::Vector3i MasterSurface::cellOf(const Eigen::Vector3d& point) const {
+  return ((point - gridOrigin_) / cellSize_).array().floor().cast<int>();
+}
+
+void MasterSurface::buildSearchGrid(const Eigen::Matrix3Xd& coordinates, double reach) {
+  cells_.clear();
+  if (segmentCount() == 0) return;
+  std::vector<Eigen::AlignedBox3d> boxes(segmentCount());
+  double sizeSum = 0;
+  for (int s = 0; s < segmentCount(); ++s) {
+    for (int k = 0; k < nodesPerSegment(); ++k) boxes[s].extend(coordinates.col(segments_(s, k)));
+    sizeSum += boxes[s].sizes().maxCoeff();
+  }
+  typicalSize_ = sizeSum / segmentCount();
+  // Boxes grow by the reach and by a fraction of the segment size (curved Quad9 segments bulge
+  // beyond their nodes' hull only slightly).
+  const double inflation = reach + 0.25 * typicalSize_;
+  cellSize_ = typicalSize_ + 2 * inflation;
+  gridOrigin_ = coordinates.col(segments_(0, 0));
+  for (int s = 0; s < segmentCount(); ++s) {
+    const Eigen::Vector3d low = boxes[s].min().array() - inflation;
+    const Eigen::Vector3d high = boxes[s].max().array() + inflation;
+    const Eigen::Vector3i first = cellOf(low), last = cellOf(high);
+    for (int i = first.x(); i <= last.x(); ++i) {
+      for (int j = first.y(); j <= last.y(); ++j) {
+        for (int k = first.z(); k <= last.z(); ++k) cells_[cellKey({i, j, k})].push_back(s);
+      }
+    }
+  }
+}
+
+SegmentProjection MasterSurface::walk(int start, const Eigen::Vector2d& guess,
+                                      const Eigen::Vector3d& point,
+                                      const Eigen::Matrix3Xd& coordinates) const {
+  std::vector<int> visited;
+  int segment = start;
+  Eigen::Vector2d initial = guess;
+  for (int hop = 0; hop < kMaxWalkHops && segment >= 0; ++hop) {
+    visited.push_back(segment);
+    const ProjectionResult p =
+        closestPointProjection(type_, segmentNodes(segment, coordinates), point, initial);
+    if (!p.converged) return {};
+    if (p.inside(kInsideTolerance)) {
+      const SurfaceShape<double> shape = surfaceShape(type_, p.xi[0], p.xi[1]);
+      Eigen::Vector3d rho = Eigen::Vector3d::Zero();
+      for (int k = 0; k < shape.count; ++k) rho += shape.value[k] * coordinates.col(node(segment, k));
+      return {segment, p.xi, (point - rho).norm()};
+    }
+    int next = -1;
+    for (int edge : violatedEdges(p.xi)) {
+      const int candidate = neighbour(segment, edge);
+      if (candidate >= 0 && std::find(visited.begin(), visited.end(), candidate) == visited.end()) {
+        next = candidate;
+        break;
+      }
+    }
+    segment = next;
+    initial.setZero();
+  }
+  return {};
+}
+
+SegmentProjection MasterSurface::search(const Eigen::Vector3d& point,
+                                        const Eigen::Matrix3Xd& coordinates) const {
+  SegmentProjection best;
+  const auto cell = cells_.find(cellKey(cellOf(point)));
+  if (cell == cells_.end()) return best;
+  for (int segment : cell->second) {
+    const ProjectionResult p = closestPointProjection(
+        type_, segmentNodes(segment, coordinates), point, Eigen::Vector2d::Zero());
+    if (!p.converged || !p.inside(kInsideTolerance)) continue;
+    const SurfaceShape<double> shape = surfaceShape(type_, p.xi[0], p.xi[1]);
+    Eigen::Vector3d rho = Eigen::Vector3d::Zero();
+    for (int k = 0; k < shape.count; ++k) rho += shape.value[k] * coordinates.col(node(segment, k));
+    const double distance = (point - rho).norm();
+    if (!best.found() || distance < best.distance) best = {segment, p.xi, distance};
+  }
+  return best;
+}
+
+}  // namespace cc::contact

@@ -1,0 +1,66 @@
+// Master surface of a contact pair: its segments (Quad4/Quad9 faces), their edge neighbours,
+// and the search for the segment a slave point projects onto: a local walk across edge
+// neighbours from the point's current segment (points slide across any number of segments), and
+// a global search through a bucket grid of segment bounding boxes, O(n) to build and O(1) per
+// query, never an all-pairs loop.
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <unordered_map>
+#include <vector>
+
+#include "contact/projection.hpp"
+#include "mesh/mesh.hpp"
+
+namespace cc::contact {
+
+struct SegmentProjection {
+  int segment = -1;  // -1: no segment found (the point projects outside the master surface)
+  Eigen::Vector2d xi = Eigen::Vector2d::Zero();
+  double distance = 0;  // |r_s - rho|
+  bool found() const { return segment >= 0; }
+};
+
+class MasterSurface {
+ public:
+  MasterSurface() = default;
+  explicit MasterSurface(const FaceSet& faces);
+
+  SegmentType type() const { return type_; }
+  int segmentCount() const { return static_cast<int>(segments_.rows()); }
+  int nodesPerSegment() const { return static_cast<int>(segments_.cols()); }
+  int node(int segment, int k) const { return segments_(segment, k); }
+  // Neighbour across edge e (0: xi2 = -1, 1: xi1 = +1, 2: xi2 = +1, 3: xi1 = -1), or -1.
+  int neighbour(int segment, int edge) const { return neighbours_[segment][edge]; }
+  NodeMatrix<double> segmentNodes(int segment, const Eigen::Matrix3Xd& coordinates) const;
+
+  // Rebuilds the bucket grid for the current coordinates (once per step or when points get
+  // lost); `reach` inflates segment boxes (expected maximum gap + slip per step).
+  void buildSearchGrid(const Eigen::Matrix3Xd& coordinates, double reach);
+
+  // Local search: project on `start`, walk to edge neighbours while the parameter leaves the
+  // segment. Returns a segment only if the point projects inside one.
+  SegmentProjection walk(int start, const Eigen::Vector2d& guess, const Eigen::Vector3d& point,
+                         const Eigen::Matrix3Xd& coordinates) const;
+  // Global search through the grid (needs buildSearchGrid): the closest inside projection.
+  SegmentProjection search(const Eigen::Vector3d& point, const Eigen::Matrix3Xd& coordinates) const;
+
+  double typicalSegmentSize() const { return typicalSize_; }
+
+ private:
+  using CellKey = long long;
+  CellKey cellKey(const Eigen::Vector3i& cell) const;
+  Eigen::Vector3i cellOf(const Eigen::Vector3d& point) const;
+
+  SegmentType type_ = SegmentType::Quad4;
+  Connectivity segments_;
+  std::vector<std::array<int, 4>> neighbours_;
+  double typicalSize_ = 1;
+  // Bucket grid: segment indices per cell of size cellSize_ (hashed, sparse).
+  double cellSize_ = 1;
+  Eigen::Vector3d gridOrigin_ = Eigen::Vector3d::Zero();
+  std::unordered_map<CellKey, std::vector<int>> cells_;
+};
+
+}  // namespace cc::contact
