@@ -1,0 +1,106 @@
+// Deck spellings of the enumerated ProblemSpec values and the tangent presets.
+#include "deck/spec_choices.hpp"
+
+namespace cc::deck {
+
+const Choices<MaterialSpec::Model>& materialModels() {
+  static const Choices<MaterialSpec::Model> choices = {
+      {"svk", MaterialSpec::Model::StVenantKirchhoff}, {"neohooke", MaterialSpec::Model::NeoHooke}};
+  return choices;
+}
+
+const Choices<ElementBlockSpec::Type>& elementTypes() {
+  static const Choices<ElementBlockSpec::Type> choices = {
+      {"hex8", ElementBlockSpec::Type::Hex8},
+      {"solid_shell8", ElementBlockSpec::Type::SolidShell8},
+      {"solid_shell18", ElementBlockSpec::Type::SolidShell18}};
+  return choices;
+}
+
+const Choices<int>& thicknessAxes() {
+  static const Choices<int> choices = {{"auto", -1}, {"x", 0}, {"y", 1}, {"z", 2}};
+  return choices;
+}
+
+const Choices<RigidSurfaceSpec::Shape>& rigidShapes() {
+  static const Choices<RigidSurfaceSpec::Shape> choices = {
+      {"plane", RigidSurfaceSpec::Shape::Plane},
+      {"cylinder", RigidSurfaceSpec::Shape::Cylinder},
+      {"parabolic_cylinder", RigidSurfaceSpec::Shape::ParabolicCylinder},
+      {"sphere", RigidSurfaceSpec::Shape::Sphere}};
+  return choices;
+}
+
+const Choices<ContactSpec::Kind>& contactKinds() {
+  static const Choices<ContactSpec::Kind> choices = {
+      {"sts", ContactSpec::Kind::SegmentToSegment},
+      {"nts", ContactSpec::Kind::NodeToSegment},
+      {"stas", ContactSpec::Kind::SegmentToAnalytical}};
+  return choices;
+}
+
+const Choices<NewtonSpec::Criterion>& convergenceCriteria() {
+  static const Choices<NewtonSpec::Criterion> choices = {
+      {"energy", NewtonSpec::Criterion::Energy},
+      {"residual", NewtonSpec::Criterion::Residual},
+      {"both", NewtonSpec::Criterion::Both},
+      {"either", NewtonSpec::Criterion::Either}};
+  return choices;
+}
+
+const Choices<bool TangentParts::*>& tangentParts() {
+  static const Choices<bool TangentParts::*> choices = {
+      {"normal_main", &TangentParts::normalMain},
+      {"normal_rotational", &TangentParts::normalRotational},
+      {"normal_curvature", &TangentParts::normalCurvature},
+      {"stick_main", &TangentParts::stickMain},
+      {"stick_rotational", &TangentParts::stickRotational},
+      {"stick_curvature", &TangentParts::stickCurvature},
+      {"slide_constitutive", &TangentParts::slideConstitutive},
+      {"slide_rotational", &TangentParts::slideRotational},
+      {"slide_curvature", &TangentParts::slideCurvature},
+      {"slide_unsymmetric_curvature", &TangentParts::slideUnsymmetricCurvature}};
+  return choices;
+}
+
+const Choices<bool OutputSpec::*>& outputFields() {
+  static const Choices<bool OutputSpec::*> choices = {{"displacement", &OutputSpec::displacement},
+                                                      {"reaction", &OutputSpec::reaction},
+                                                      {"stress", &OutputSpec::stress},
+                                                      {"contact", &OutputSpec::contact}};
+  return choices;
+}
+
+namespace {
+
+TangentParts withoutCurvature() {
+  TangentParts parts;
+  parts.normalCurvature = false;
+  parts.stickCurvature = false;
+  parts.slideCurvature = false;
+  parts.slideUnsymmetricCurvature = false;
+  return parts;
+}
+
+TangentParts mainPartsOnly() {
+  TangentParts parts;
+  for (const auto& [name, field] : tangentParts()) parts.*field = false;
+  parts.normalMain = true;
+  parts.stickMain = true;
+  parts.slideConstitutive = true;
+  return parts;
+}
+
+}  // namespace
+
+const Choices<TangentPreset>& tangentPresets() {
+  using Mode = ContactSpec::TangentMode;
+  static const Choices<TangentPreset> choices = {
+      {"full", {Mode::Paper, TangentParts{}}},
+      {"no_curvature", {Mode::Paper, withoutCurvature()}},
+      {"main", {Mode::Paper, mainPartsOnly()}},
+      {"exact", {Mode::Exact, TangentParts{}}}};
+  return choices;
+}
+
+}  // namespace cc::deck
