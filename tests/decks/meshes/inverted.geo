@@ -1,0 +1,30 @@
+// Test fixture for the deck tests: one hexahedron whose top face is mirrored against its bottom
+// face (a folded element: det J > 0 at some corners, < 0 at others). Groups: volume cube;
+// surfaces bottom, top. Meshes without complaint in gmsh; the model builder must reject it.
+Point(1) = {0, 0, 0};
+Point(2) = {1, 0, 0};
+Point(3) = {1, 1, 0};
+Point(4) = {0, 1, 0};
+Point(5) = {0, 0, 1};
+Point(6) = {0, 1, 1};
+Point(7) = {1, 1, 1};
+Point(8) = {1, 0, 1};
+Line(1) = {1, 2}; Line(2) = {2, 3}; Line(3) = {3, 4}; Line(4) = {4, 1};
+Line(5) = {5, 6}; Line(6) = {6, 7}; Line(7) = {7, 8}; Line(8) = {8, 5};
+Line(9) = {1, 5}; Line(10) = {2, 6}; Line(11) = {3, 7}; Line(12) = {4, 8};
+Transfinite Curve{1:12} = 2;
+Curve Loop(1) = {1, 2, 3, 4};   Surface(1) = {1};
+Curve Loop(2) = {5, 6, 7, 8};   Surface(2) = {2};
+Curve Loop(3) = {1, 10, -5, -9}; Surface(3) = {3};
+Curve Loop(4) = {2, 11, -6, -10}; Surface(4) = {4};
+Curve Loop(5) = {3, 12, -7, -11}; Surface(5) = {5};
+Curve Loop(6) = {4, 9, -8, -12}; Surface(6) = {6};
+Transfinite Surface{1:6};
+Recombine Surface{1:6};
+Surface Loop(1) = {1:6};
+Volume(1) = {1};
+Transfinite Volume{1} = {1, 2, 3, 4, 5, 6, 7, 8};
+Recombine Volume{1};
+Physical Volume("cube") = {1};
+Physical Surface("bottom") = {1};
+Physical Surface("top") = {2};
