@@ -24,6 +24,10 @@ namespace {
 // balance elements of very different cost (contact items next to empty ones).
 constexpr int kScheduleChunk = 16;
 
+// Contributions with fewer items run on one thread: thread start-up and one barrier per color
+// would cost more than evaluating a handful of contact points.
+constexpr std::size_t kMinItemsForThreads = 64;
+
 // Pattern versions are unique in the process so that a solver keyed on a version never
 // confuses patterns of two assemblers.
 std::atomic<std::uint64_t> nextPatternVersion{1};
@@ -230,7 +234,7 @@ void Assembler::Impl::evaluateContribution(std::size_t index, const AssemblyStat
   Contribution& contribution = *contributions[index];
   const ItemColoring& coloring = states[index].coloring;
   for (ThreadBuffers& buffers : threadBuffers) buffers.failure = ItemFailure{};
-#pragma omp parallel
+#pragma omp parallel if (coloring.items.size() >= kMinItemsForThreads)
   {
     ThreadBuffers& buffers = threadBuffers[omp_get_thread_num()];
     for (std::size_t color = 0; color < coloring.numColors(); ++color) {

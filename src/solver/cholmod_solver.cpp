@@ -39,15 +39,15 @@ cholmod_sparse viewOf(const SparseMatrix& matrix) {
   return view;
 }
 
-int orderingCode(CholmodOrdering ordering) {
+int orderingCode(FillOrdering ordering) {
   switch (ordering) {
-    case CholmodOrdering::Amd:
+    case FillOrdering::Amd:
       return CHOLMOD_AMD;
-    case CholmodOrdering::Metis:
+    case FillOrdering::Metis:
       return CHOLMOD_METIS;
-    case CholmodOrdering::NestedDissection:
+    case FillOrdering::NestedDissection:
       return CHOLMOD_NESDIS;
-    case CholmodOrdering::Automatic:
+    case FillOrdering::Automatic:
       break;
   }
   return CHOLMOD_AMD;
@@ -55,11 +55,11 @@ int orderingCode(CholmodOrdering ordering) {
 
 class CholmodSolver final : public LinearSolver {
  public:
-  explicit CholmodSolver(CholmodOrdering ordering) {
+  explicit CholmodSolver(FillOrdering ordering) {
     cholmod_start(&common_);
     common_.print = 0;  // failures are reported as exceptions, not printed
     common_.supernodal = CHOLMOD_SUPERNODAL;
-    if (ordering != CholmodOrdering::Automatic) {
+    if (ordering != FillOrdering::Automatic) {
       common_.nmethods = 1;
       common_.method[0].ordering = orderingCode(ordering);
     }
@@ -148,7 +148,7 @@ class CholmodSolver final : public LinearSolver {
 
 }  // namespace
 
-std::unique_ptr<LinearSolver> makeCholmodSolver(CholmodOrdering ordering) {
+std::unique_ptr<LinearSolver> makeCholmodSolver(FillOrdering ordering) {
   return std::make_unique<CholmodSolver>(ordering);
 }
 

@@ -41,7 +41,17 @@ struct LoadStepper::PhaseRun {
 
 LoadStepper::LoadStepper(NonlinearProblem& problem, StepObserver& observer,
                          std::vector<PhaseSpec> phases)
-    : problem_(problem), observer_(observer), phases_(std::move(phases)) {}
+    : problem_(problem), observer_(observer), phases_(std::move(phases)) {
+  // The deck validates these; a violation here is a bug upstream, not a user error.
+  for (const PhaseSpec& phase : phases_) {
+    const CutbackSpec& cutback = phase.cutback;
+    if (!(phase.dt > 0) || phase.steps < 0 || phase.outputEvery < 1 || !(cutback.factor > 0) ||
+        !(cutback.factor < 1) || !(cutback.growFactor >= 1) || cutback.maxCutbacks < 0) {
+      throw std::invalid_argument("LoadStepper: invalid phase parameters from " +
+                                  phase.where.str());
+    }
+  }
+}
 
 LoadStepper::~LoadStepper() = default;
 

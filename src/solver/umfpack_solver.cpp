@@ -17,9 +17,26 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+int orderingCode(FillOrdering ordering) {
+  switch (ordering) {
+    case FillOrdering::Amd:
+      return UMFPACK_ORDERING_AMD;
+    case FillOrdering::Metis:
+      return UMFPACK_ORDERING_METIS;
+    case FillOrdering::Automatic:
+      return UMFPACK_ORDERING_CHOLMOD;
+    case FillOrdering::NestedDissection:
+      break;
+  }
+  throw std::invalid_argument("UMFPACK has no nested-dissection ordering of its own");
+}
+
 class UmfpackSolver final : public LinearSolver {
  public:
-  UmfpackSolver() { umfpack_di_defaults(control_); }
+  explicit UmfpackSolver(FillOrdering ordering) {
+    umfpack_di_defaults(control_);
+    control_[UMFPACK_ORDERING] = orderingCode(ordering);
+  }
   ~UmfpackSolver() override { release(); }
   UmfpackSolver(const UmfpackSolver&) = delete;
   UmfpackSolver& operator=(const UmfpackSolver&) = delete;

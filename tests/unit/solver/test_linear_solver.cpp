@@ -72,8 +72,8 @@ TEST(LinearSolver, CholmodSolvesSpdSystemWithEveryOrdering) {
   const SparseMatrix matrix = gridLaplacian(12, 0.0);
   const Eigen::VectorXd rhs = rightHandSide(matrix.rows());
   const Eigen::VectorXd reference = Eigen::MatrixXd(matrix).ldlt().solve(rhs);
-  for (CholmodOrdering ordering : {CholmodOrdering::Amd, CholmodOrdering::Metis,
-                                   CholmodOrdering::NestedDissection, CholmodOrdering::Automatic}) {
+  for (FillOrdering ordering : {FillOrdering::Amd, FillOrdering::Metis,
+                                FillOrdering::NestedDissection, FillOrdering::Automatic}) {
     auto solver = makeCholmodSolver(ordering);
     solver->analyzePattern(matrix);
     solver->factorize(matrix);
