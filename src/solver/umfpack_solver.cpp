@@ -130,8 +130,8 @@ class UmfpackSolver final : public LinearSolver {
 
 }  // namespace
 
-std::unique_ptr<LinearSolver> makeUmfpackSolver() {
-  return std::make_unique<UmfpackSolver>();
+std::unique_ptr<LinearSolver> makeUmfpackSolver(FillOrdering ordering) {
+  return std::make_unique<UmfpackSolver>(ordering);
 }
 
 }  // namespace cc

@@ -1,12 +1,13 @@
 // Benchmark (not a test): assembly time per thread count and CHOLMOD orderings (fill, flops,
 // analysis/factorization/solve time) against UMFPACK on Hex8-mesh sparsity patterns.
-// Usage: bench_solver [cells per edge ...]  (default 12 18 24)
+// Usage: bench_solver [--assembly-only] [cells per edge ...]  (default 12 18)
 #include <cholmod.h>
 #include <omp.h>
 
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <string>
 #include <ctime>
 
 #include "../fem/grid_springs.hpp"
@@ -78,7 +79,7 @@ void timeSolver(cc::LinearSolver& solver, const cc::SparseMatrix& matrix, const 
               name, analysis, factorization, solve, (matrix * x - rhs).norm() / rhs.norm());
 }
 
-void benchmark(int cells) {
+void benchmark(int cells, bool assemblyOnly) {
   cc::test::GridSprings grid(cells, cells, cells);
   const cc::DofMap dofs = bottomFixed(grid);
   const Eigen::Matrix3Xd reference = grid.referenceMatrix();
@@ -101,6 +102,7 @@ void benchmark(int cells) {
         static_cast<long>(matrices.free.nonZeros()));
     system = std::move(matrices);
   }
+  if (assemblyOnly) return;
   printFill(system.free, CHOLMOD_AMD, "AMD");
   printFill(system.free, CHOLMOD_METIS, "METIS");
   printFill(system.free, CHOLMOD_NESDIS, "NESDIS");
@@ -125,7 +127,14 @@ void benchmark(int cells) {
 
 int main(int argc, char** argv) {
   std::vector<int> sizes;
-  for (int k = 1; k < argc; ++k) sizes.push_back(std::atoi(argv[k]));
-  if (sizes.empty()) sizes = {12, 18, 24};
-  for (int cells : sizes) benchmark(cells);
+  bool assemblyOnly = false;
+  for (int k = 1; k < argc; ++k) {
+    if (std::string(argv[k]) == "--assembly-only") {
+      assemblyOnly = true;
+    } else {
+      sizes.push_back(std::atoi(argv[k]));
+    }
+  }
+  if (sizes.empty()) sizes = {12, 18};
+  for (int cells : sizes) benchmark(cells, assemblyOnly);
 }
