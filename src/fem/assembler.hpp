@@ -37,6 +37,7 @@ struct AssemblyTimings {
 
 class Assembler {
  public:
+  // Keeps references: `dofs` and the contributions must outlive the assembler.
   Assembler(const DofMap& dofs, std::vector<Contribution*> contributions);
   ~Assembler();
 

@@ -76,7 +76,8 @@ class Newton {
   // restores it and calls problem.restoreStep()).
   NewtonResult solve(const NewtonStep& step, const NewtonSpec& spec, Eigen::VectorXd& displacement);
 
-  // Internal force of the last assembly (the converged one, see the header comment).
+  // Internal force of the last assembly. When a step converges after a solve (energy tests),
+  // that assembly precedes the last, negligible update, as FEAP's reactions do.
   const Eigen::VectorXd& internalForce() const { return internalForce_; }
   int assemblies() const { return assemblies_; }
   double assemblySeconds() const { return assemblySeconds_; }

@@ -6,14 +6,34 @@
 #include <muParser.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <numbers>
+#include <string>
 
 #include "common/errors.hpp"
 
 namespace cc {
 
 namespace {
+
+// muParser's message with its 0-based "position N" turned into the 1-based character a user
+// counts, or the character appended when the message names none.
+std::string parserMessage(const mu::Parser::exception_type& error, const std::string& expression) {
+  std::string message = error.GetMsg();
+  while (!message.empty() && (message.back() == '.' || message.back() == ' ')) message.pop_back();
+  const std::string marker = "at position ";
+  const std::size_t at = message.find(marker);
+  const int character = static_cast<int>(error.GetPos()) + 1;
+  if (at != std::string::npos) {
+    std::size_t end = at + marker.size();
+    while (end < message.size() && std::isdigit(static_cast<unsigned char>(message[end]))) ++end;
+    message.replace(at, end - at, fmt::format("at character {}", character));
+  } else if (character >= 1 && character <= static_cast<int>(expression.size())) {
+    message += fmt::format(" (at character {})", character);
+  }
+  return message;
+}
 
 class ExpressionFunction final : public ScalarFunction {
  public:
@@ -27,8 +47,8 @@ class ExpressionFunction final : public ScalarFunction {
       parser_.SetExpr(spec.expression);
       parser_.Eval();  // muParser parses lazily: force it now so errors point at the deck
     } catch (const mu::Parser::exception_type& error) {
-      throw InputError(where_, fmt::format("cannot parse expression \"{}\": {} (at character {})",
-                                           spec.expression, error.GetMsg(), error.GetPos() + 1));
+      throw InputError(where_, fmt::format("cannot parse expression \"{}\": {}", spec.expression,
+                                           parserMessage(error, spec.expression)));
     }
   }
 
