@@ -4,6 +4,7 @@
 #include <omp.h>
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <set>
@@ -253,6 +254,89 @@ TEST(Assembler, SymmetryFlagIsTheAndOfAllContributions) {
   EXPECT_FALSE(matrices.symmetric);
   // Node 2 gets 1 from item {1,2} of the first list and 1 from the second contribution.
   EXPECT_EQ(force.segment<3>(6), Eigen::Vector3d::Constant(2.0));
+}
+
+// Items of 2 to 5 nodes (like contact items next to elements) scattered over a node range,
+// with values depending on the item and the node, so any misplaced add shows.
+class MixedItems : public Contribution {
+ public:
+  explicit MixedItems(int numNodes) {
+    for (int item = 0; item < 400; ++item) {
+      std::vector<int> nodes;
+      const int size = 2 + item % 4;
+      for (int k = 0; k < size; ++k) nodes.push_back((item * 7 + k * 13) % numNodes);
+      std::sort(nodes.begin(), nodes.end());
+      nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+      items_.push_back(nodes);
+    }
+  }
+  std::string name() const override { return "mixed"; }
+  std::size_t itemCount() const override { return items_.size(); }
+  std::span<const int> itemNodes(std::size_t item) const override { return items_[item]; }
+  LocalStatus evaluate(std::size_t item, const AssemblyState&, Eigen::VectorXd& force,
+                       Eigen::MatrixXd* tangent) override {
+    for (Eigen::Index k = 0; k < force.size(); ++k) force[k] = std::sin(1.0 + item + 0.1 * k);
+    if (tangent) {
+      for (Eigen::Index i = 0; i < tangent->rows(); ++i)
+        for (Eigen::Index j = 0; j < tangent->cols(); ++j)
+          (*tangent)(i, j) = std::cos(0.5 * item + i + 0.3 * j);
+    }
+    return LocalStatus::success();
+  }
+
+ private:
+  std::vector<std::vector<int>> items_;
+};
+
+TEST(Assembler, ItemsOfMixedSizesOnFourThreadsEqualOneThread) {
+  const int numNodes = 97;
+  std::vector<bool> constrained(3 * numNodes, false);
+  for (int dof = 0; dof < 3 * numNodes; dof += 5) constrained[dof] = true;
+  const DofMap dofs(std::vector<bool>(numNodes, true), constrained);
+  const Eigen::Matrix3Xd reference = Eigen::Matrix3Xd::Zero(3, numNodes);
+  AssemblyState state;
+  state.reference = state.current = state.previous = &reference;
+  MixedItems items(numNodes);
+  Assembled runs[2];
+  const int saved = omp_get_max_threads();
+  for (int run = 0; run < 2; ++run) {
+    omp_set_num_threads(run == 0 ? 1 : 4);
+    Assembler assembler(dofs, {&items});
+    assembler.assemble(state, runs[run].force, &runs[run].matrices);
+  }
+  omp_set_num_threads(saved);
+  EXPECT_EQ(runs[0].force, runs[1].force);
+  EXPECT_EQ(Eigen::MatrixXd(runs[0].matrices.free), Eigen::MatrixXd(runs[1].matrices.free));
+  EXPECT_EQ(Eigen::MatrixXd(runs[0].matrices.coupling), Eigen::MatrixXd(runs[1].matrices.coupling));
+  // Independent check of one entry: the force on node 0 is the sum over items containing it.
+  Eigen::Vector3d expected = Eigen::Vector3d::Zero();
+  for (std::size_t item = 0; item < items.itemCount(); ++item) {
+    const auto nodes = items.itemNodes(item);
+    for (std::size_t k = 0; k < nodes.size(); ++k) {
+      if (nodes[k] != 0) continue;
+      for (int c = 0; c < 3; ++c) expected[c] += std::sin(1.0 + item + 0.1 * (3 * k + c));
+    }
+  }
+  EXPECT_LT((runs[1].force.head<3>() - expected).norm(), 1e-13);
+}
+
+// A bug inside an item evaluation (not a StepFailure) must surface as itself, not terminate.
+class ThrowingItems : public ListContribution {
+ public:
+  LocalStatus evaluate(std::size_t item, const AssemblyState&, Eigen::VectorXd&,
+                       Eigen::MatrixXd*) override {
+    if (item == 1) throw std::logic_error("bug in item 1");
+    return LocalStatus::success();
+  }
+};
+
+TEST(Assembler, OtherExceptionsFromItemsAreRethrownAfterTheParallelLoop) {
+  ListFixture fixture;
+  ThrowingItems items;
+  items.items = fixture.list.items;
+  Assembler assembler(fixture.dofs, {&items});
+  Eigen::VectorXd force;
+  EXPECT_THROW(assembler.assemble(fixture.state, force, nullptr), std::logic_error);
 }
 
 }  // namespace

@@ -97,10 +97,11 @@ void benchmark(int cells, bool assemblyOnly) {
     const double cpu = cpuSeconds();
     constexpr int kRepeats = 3;
     for (int k = 0; k < kRepeats; ++k) assembler.assemble(state, force, &matrices);
-    std::printf("  assembly, %d thread(s): wall %.3f s, CPU %.3f s (pattern + coloring once: "
-                "%.3f s), nnz(K_ff) = %ld\n",
-                threads, seconds(start) / kRepeats, (cpuSeconds() - cpu) / kRepeats,
-                assembler.timings().pattern, static_cast<long>(matrices.free.nonZeros()));
+    std::printf(
+        "  assembly, %d thread(s): wall %.3f s, CPU %.3f s (pattern + coloring once: "
+        "%.3f s), nnz(K_ff) = %ld\n",
+        threads, seconds(start) / kRepeats, (cpuSeconds() - cpu) / kRepeats,
+        assembler.timings().pattern, static_cast<long>(matrices.free.nonZeros()));
     system = std::move(matrices);
   }
   if (assemblyOnly) return;

@@ -55,6 +55,11 @@ TEST(LoadStepper, CutsBackUntilTheStepPassesRegrowsAndLandsOnNominalTimes) {
   EXPECT_EQ(observer.cutbacks[1].newDt, 0.25);
   EXPECT_EQ(observer.cutbacks[2].time, 1.0);
   EXPECT_EQ(observer.cutbacks[2].step, 3);
+  // Step 1 was tried at dt = 1, 0.5 (failing in the assembly, before any solve is logged)
+  // and converged at dt = 0.25 in attempt 2.
+  EXPECT_EQ(observer.iterations.front().step, 1);
+  EXPECT_EQ(observer.iterations.front().attempt, 2);
+  EXPECT_EQ(observer.iterations.front().time, 0.25);
   EXPECT_EQ(observer.steps[0].cutbacks, 2);
   EXPECT_EQ(observer.steps[2].cutbacks, 1);
   // The prescribed end follows 0.1 t exactly at the final time.
