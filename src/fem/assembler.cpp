@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cassert>
 #include <chrono>
 #include <cmath>
 #include <exception>
@@ -107,6 +108,7 @@ void scatterColumn(const LocalBuffers& local, int localColumn, int blockColumn,
     const int first = local.firstEquation[k];
     if (first < 0) continue;
     const int* found = std::lower_bound(rowsBegin, rowsEnd, first);
+    assert(found != rowsEnd && *found == first && "pattern lacks a node pair of an item");
     const std::ptrdiff_t base = found - block.innerIndexPtr();
     for (int component = 0; component < 3; ++component) {
       const int row = local.equations[3 * k + component];
