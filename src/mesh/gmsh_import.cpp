@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 #include <gmsh.h>
+#include <omp.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -53,7 +54,7 @@ struct GmshModel {
 // reported, and finalize on exit. gmsh keeps global state, so sessions are serialized.
 class GmshSession {
  public:
-  GmshSession() : lock_(mutex()) {
+  GmshSession() : lock_(mutex()), callerThreads_(omp_get_max_threads()) {
     gmsh::initialize(0, nullptr, /*readConfigFiles=*/false);
     gmsh::option::setNumber("General.Terminal", 0);
     // DefineConstant values with a Name also live in gmsh's ONELAB parameter store, which
@@ -64,6 +65,8 @@ class GmshSession {
   ~GmshSession() {
     gmsh::logger::stop();
     gmsh::finalize();
+    // gmsh sets OpenMP to one thread; the assembly after the import needs the caller's setting.
+    omp_set_num_threads(callerThreads_);
   }
   GmshSession(const GmshSession&) = delete;
   GmshSession& operator=(const GmshSession&) = delete;
@@ -89,6 +92,7 @@ class GmshSession {
     return gmshMutex;
   }
   std::lock_guard<std::mutex> lock_;
+  int callerThreads_;
 };
 
 std::string joined(const std::vector<std::string>& messages) {

@@ -1,1 +1,83 @@
-// placeholder: replaced by the module's implementation
+// Model: the NonlinearProblem the solver works on, and the step records for output.
+#include "model/model.hpp"
+
+namespace cc {
+
+Model::~Model() = default;
+
+void Model::prescribedValues(double t, Eigen::VectorXd& values) const {
+  boundaryConditions_.prescribedValues(t, dofs_, mesh_.coordinates, values);
+}
+
+void Model::externalForces(double t, Eigen::VectorXd& force) const {
+  boundaryConditions_.externalForces(t, mesh_.coordinates, force);
+}
+
+void Model::assemble(const AssemblyState& state, Eigen::VectorXd& internalForce,
+                     SystemMatrices* tangent) {
+  assembler_->assemble(state, internalForce, tangent);
+}
+
+void Model::commitStep() {
+  for (auto& set : elementSets_) set->commitStep();
+  for (auto& pair : contactPairs_) pair->commitStep();
+}
+
+void Model::restoreStep() {
+  for (auto& set : elementSets_) set->restoreStep();
+  for (auto& pair : contactPairs_) pair->restoreStep();
+}
+
+int Model::elementCount() const {
+  int count = 0;
+  for (const auto& set : elementSets_) count += set->elementCount();
+  return count;
+}
+
+int Model::contactPointCount() const {
+  int count = 0;
+  for (const auto& pair : contactPairs_) count += pair->pointCount();
+  return count;
+}
+
+StepRecord Model::stepRecord(int step, double time, int iterations, int cutbacks,
+                             const Eigen::VectorXd& displacement,
+                             const Eigen::VectorXd& internalForce, bool withStress) {
+  const int n = mesh_.numNodes();
+  StepRecord record;
+  record.step = step;
+  record.time = time;
+  record.iterations = iterations;
+  record.cutbacks = cutbacks;
+  displacementBuffer_ = Eigen::Map<const Eigen::Matrix3Xd>(displacement.data(), 3, n);
+  record.displacement = &displacementBuffer_;
+
+  // Reactions: the out-of-balance force f_int - f_ext at the Dirichlet dofs (zero elsewhere).
+  Eigen::VectorXd external;
+  externalForces(time, external);
+  const Eigen::VectorXd unbalanced = internalForce - external;
+  reactionBuffer_.setZero(3, n);
+  for (int dof : dofs_.prescribedDofs()) reactionBuffer_(dof % 3, dof / 3) = unbalanced[dof];
+  record.reaction = &reactionBuffer_;
+  for (const std::string& name : reactionSets_) {
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    for (int node : mesh_.nodeSets.at(name).nodes) sum += unbalanced.segment<3>(3 * node);
+    record.setReactions.emplace_back(name, sum);
+  }
+
+  if (withStress) {
+    const Eigen::Matrix3Xd current = mesh_.coordinates + displacementBuffer_;
+    stressBuffer_.resize(6, elementCount());
+    int column = 0;
+    for (const auto& set : elementSets_) {
+      const auto stress = set->cauchyStress(mesh_.coordinates, current);
+      stressBuffer_.middleCols(column, stress.cols()) = stress;
+      column += static_cast<int>(stress.cols());
+    }
+    record.stress = &stressBuffer_;
+  }
+  for (const auto& pair : contactPairs_) record.contact.push_back(pair->record());
+  return record;
+}
+
+}  // namespace cc

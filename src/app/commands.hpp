@@ -1,0 +1,36 @@
+// The subcommands of `covcontact`: run a deck, check a deck, compare two results files. Each
+// returns the process exit code (ExitCode in common/errors.hpp).
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace cc::app {
+
+struct RunOptions {
+  std::string deck;
+  std::string output;  // -o; empty = the deck's `output file=` or <deck stem>.h5
+  int threads = 0;     // 0 = OpenMP default
+  std::string commandLine;
+  bool quiet = false;
+};
+
+struct CompareOptionsCli {
+  std::string run;
+  std::string reference;
+  double rtol = 1e-8;
+  std::optional<double> atol;
+  std::vector<std::string> fields;
+};
+
+int runCommand(const RunOptions& options);
+int checkCommand(const std::string& deck, bool listKeywords);
+int compareCommand(const CompareOptionsCli& options);
+
+// The results path a run writes: -o, else the deck's `output file=`, else <deck stem>.h5 in
+// the working directory.
+std::string resultsPath(const std::string& deckPath, const std::string& deckOutput,
+                        const std::string& commandLineOutput);
+
+}  // namespace cc::app

@@ -1,0 +1,176 @@
+// `covcontact run`: deck -> model -> load stepping -> results file, with progress, signal
+// handling (SIGINT/SIGTERM stop after the current iteration) and a closing summary.
+#include <fmt/format.h>
+#include <omp.h>
+
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <filesystem>
+#include <iostream>
+
+#include "app/commands.hpp"
+#include "app/progress.hpp"
+#include "common/errors.hpp"
+#include "deck/deck_parser.hpp"
+#include "model/model.hpp"
+#include "output/hdf5_io.hpp"
+#include "output/results_writer.hpp"
+#include "solver/load_stepper.hpp"
+
+namespace cc::app {
+
+namespace {
+
+std::atomic<bool> stopSignal{false};
+
+extern "C" void requestStop(int) { stopSignal.store(true); }
+
+// Receives the stepper's records: writes them and reports progress.
+class RunObserver : public StepObserver {
+ public:
+  RunObserver(Model& model, ResultsWriter& writer, Progress& progress, bool withStress)
+      : model_(model), writer_(writer), progress_(progress), withStress_(withStress) {}
+
+  void iteration(const IterationRecord& record) override {
+    writer_.appendIteration(record);
+    progress_.iteration(record);
+  }
+  void cutback(const CutbackRecord& record) override {
+    writer_.appendCutback(record);
+    progress_.cutback(record);
+  }
+  void stepConverged(int step, double time, int iterations, int cutbacks,
+                     const Eigen::VectorXd& displacement, const Eigen::VectorXd& internalForce,
+                     bool writeOutput) override {
+    if (writeOutput) {
+      writer_.writeStep(model_.stepRecord(step, time, iterations, cutbacks, displacement,
+                                          internalForce, withStress_));
+    }
+    progress_.stepConverged(step, time, iterations, cutbacks);
+  }
+  bool stopRequested() const override { return stopSignal.load(); }
+
+ private:
+  Model& model_;
+  ResultsWriter& writer_;
+  Progress& progress_;
+  bool withStress_;
+};
+
+OutputSelection selectionOf(const OutputSpec& output) {
+  OutputSelection s;
+  s.displacement = output.displacement;
+  s.reaction = output.reaction;
+  s.stress = output.stress;
+  s.contact = output.contact;
+  s.csv = output.csv;
+  s.xdmf = output.xdmf;
+  return s;
+}
+
+const char* outcomeName(RunSummary::Outcome outcome) {
+  switch (outcome) {
+    case RunSummary::Outcome::Completed: return "completed";
+    case RunSummary::Outcome::Diverged: return "diverged";
+    case RunSummary::Outcome::Interrupted: return "interrupted";
+    case RunSummary::Outcome::Singular: return "singular";
+  }
+  return "?";
+}
+
+int exitCodeOf(RunSummary::Outcome outcome) {
+  switch (outcome) {
+    case RunSummary::Outcome::Completed: return kExitOk;
+    case RunSummary::Outcome::Diverged: return kExitDiverged;
+    case RunSummary::Outcome::Interrupted: return kExitInterrupted;
+    case RunSummary::Outcome::Singular: return kExitSingular;
+  }
+  return kExitInternal;
+}
+
+int plannedSteps(const ProblemSpec& spec) {
+  int steps = 0;
+  for (const PhaseSpec& phase : spec.phases) steps += phase.steps;
+  return steps;
+}
+
+}  // namespace
+
+std::string resultsPath(const std::string& deckPath, const std::string& deckOutput,
+                        const std::string& commandLineOutput) {
+  if (!commandLineOutput.empty()) return commandLineOutput;
+  if (!deckOutput.empty()) return deckOutput;
+  return std::filesystem::path(deckPath).stem().string() + ".h5";
+}
+
+int runCommand(const RunOptions& options) {
+  using Clock = std::chrono::steady_clock;
+  const auto start = Clock::now();
+  if (options.threads > 0) omp_set_num_threads(options.threads);
+  std::unique_ptr<Model> model;
+  std::string path;
+  OutputSelection selection;
+  try {
+    const ProblemSpec spec = parseDeck(options.deck);
+    path = resultsPath(options.deck, spec.output.file, options.output);
+    selection = selectionOf(spec.output);
+    checkOutputWritable(path, selection);
+    model = buildModel(spec);
+  } catch (const InputError& error) {
+    std::cerr << error.what() << "\n";
+    return kExitInput;
+  } catch (const OutputError& error) {
+    std::cerr << "covcontact: error: " << error.what() << "\n";
+    return kExitIo;
+  }
+  const ProblemSpec& spec = model->spec();
+  if (!options.quiet) {
+    fmt::print("{}: {} nodes, {} elements, {} equations, {} contact points, {} threads\n",
+               spec.title.empty() ? options.deck : spec.title, model->mesh().numNodes(),
+               model->elementCount(), model->dofMap().numFree(), model->contactPointCount(),
+               model->threads());
+  }
+
+  ResultsWriter writer;
+  try {
+    writer.open(path, {spec.deckText, options.commandLine, spec.title, COVCONTACT_VERSION, options.deck},
+                model->mesh(), selection);
+  } catch (const OutputError& error) {
+    std::cerr << "covcontact: error: " << error.what() << "\n";
+    return kExitIo;
+  }
+  Progress progress(plannedSteps(spec), options.quiet);
+  RunObserver observer(*model, writer, progress, selection.stress);
+  stopSignal.store(false);
+  std::signal(SIGINT, requestStop);
+  std::signal(SIGTERM, requestStop);
+  LoadStepper stepper(*model, observer, spec.phases);
+  RunSummary summary;
+  try {
+    summary = stepper.run();
+  } catch (const OutputError& error) {
+    progress.finish();
+    std::cerr << "covcontact: error: " << error.what() << "\n";
+    return kExitIo;
+  }
+  std::signal(SIGINT, SIG_DFL);
+  std::signal(SIGTERM, SIG_DFL);
+  progress.finish();
+  const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  writer.close({outcomeName(summary.outcome), summary.stepsConverged, summary.totalIterations,
+                summary.totalCutbacks, seconds, summary.message});
+  if (summary.outcome == RunSummary::Outcome::Completed) {
+    fmt::print("completed: {} steps, {} Newton iterations, {} cut-backs in {:.2f} s; results in {}\n",
+               summary.stepsConverged, summary.totalIterations, summary.totalCutbacks, seconds,
+               path);
+  } else {
+    std::cerr << fmt::format("covcontact: run {} at t = {:.6g}: {}\n", outcomeName(summary.outcome),
+                             summary.finalTime, summary.message)
+              << fmt::format("covcontact: the {} converged steps are kept in {}\n",
+                             summary.stepsConverged, path);
+  }
+  return exitCodeOf(summary.outcome);
+}
+
+}  // namespace cc::app

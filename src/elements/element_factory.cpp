@@ -1,0 +1,29 @@
+// Element kernel factory: deck element type -> ElementKernel.
+#include "elements/element_factory.hpp"
+
+#include <fmt/format.h>
+
+#include "common/errors.hpp"
+
+namespace cc {
+
+const char* elementTypeName(ElementBlockSpec::Type type) {
+  switch (type) {
+    case ElementBlockSpec::Type::Hex8: return "hex8";
+    case ElementBlockSpec::Type::SolidShell8: return "solid_shell8";
+    case ElementBlockSpec::Type::SolidShell18: return "solid_shell18";
+  }
+  return "?";
+}
+
+std::unique_ptr<ElementKernel> makeElementKernel(const ElementBlockSpec& spec) {
+  switch (spec.type) {
+    case ElementBlockSpec::Type::Hex8: return makeHex8();
+    case ElementBlockSpec::Type::SolidShell8:
+    case ElementBlockSpec::Type::SolidShell18: break;
+  }
+  throw InputError(spec.where, fmt::format("elements: {} is not available in this build",
+                                           elementTypeName(spec.type)));
+}
+
+}  // namespace cc

@@ -1,0 +1,14 @@
+// Creates the element kernel a deck `elements` line asks for.
+#pragma once
+
+#include <memory>
+
+#include "deck/problem_spec.hpp"
+#include "elements/element.hpp"
+
+namespace cc {
+
+std::unique_ptr<ElementKernel> makeElementKernel(const ElementBlockSpec& spec);
+const char* elementTypeName(ElementBlockSpec::Type type);
+
+}  // namespace cc

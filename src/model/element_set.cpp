@@ -1,0 +1,71 @@
+// Element sets: per-element evaluation through the ElementKernel interface.
+#include "model/element_set.hpp"
+
+#include <fmt/format.h>
+
+namespace cc {
+
+namespace {
+
+FailureKind failureKindOf(ElementStatus::Code code) {
+  switch (code) {
+    case ElementStatus::Code::InvertedJacobian: return FailureKind::InvertedElement;
+    case ElementStatus::Code::LocalIterationFailed: return FailureKind::LocalIteration;
+    case ElementStatus::Code::MaterialFailure:
+    case ElementStatus::Code::NotFinite:
+    case ElementStatus::Code::Ok: break;
+  }
+  return FailureKind::NotFinite;
+}
+
+}  // namespace
+
+ElementSet::ElementSet(std::string name, const ElementBlock& block,
+                       std::unique_ptr<ElementKernel> kernel,
+                       std::shared_ptr<const Material> material)
+    : name_(std::move(name)),
+      connectivity_(block.connectivity),
+      gmshTags_(block.gmshElementTags),
+      kernel_(std::move(kernel)),
+      material_(std::move(material)),
+      historySize_(kernel_->historySize()),
+      history_(static_cast<std::size_t>(historySize_) * block.connectivity.rows(), 0.0),
+      committedHistory_(history_) {}
+
+void ElementSet::gather(std::size_t item, const Eigen::Matrix3Xd& coordinates,
+                        Eigen::Matrix3Xd& nodes) const {
+  const int count = static_cast<int>(connectivity_.cols());
+  nodes.resize(3, count);
+  for (int k = 0; k < count; ++k) nodes.col(k) = coordinates.col(connectivity_(item, k));
+}
+
+LocalStatus ElementSet::evaluate(std::size_t item, const AssemblyState& state,
+                                 Eigen::VectorXd& force, Eigen::MatrixXd* tangent) {
+  thread_local Eigen::Matrix3Xd reference, current;
+  gather(item, *state.reference, reference);
+  gather(item, *state.current, current);
+  std::span<double> history(history_.data() + item * historySize_, historySize_);
+  const ElementStatus status =
+      kernel_->evaluate(reference, current, *material_, history, force, tangent);
+  if (status.ok()) return LocalStatus::success();
+  const std::string element =
+      item < gmshTags_.size() ? fmt::format("gmsh element {}", gmshTags_[item])
+                              : fmt::format("element {}", item);
+  return LocalStatus::failure(failureKindOf(status.code),
+                              fmt::format("{} '{}': {}", element, name_, status.detail));
+}
+
+Eigen::Matrix<double, 6, Eigen::Dynamic> ElementSet::cauchyStress(
+    const Eigen::Matrix3Xd& referenceCoordinates, const Eigen::Matrix3Xd& currentCoordinates) const {
+  Eigen::Matrix<double, 6, Eigen::Dynamic> stress(6, connectivity_.rows());
+  Eigen::Matrix3Xd reference, current;
+  for (Eigen::Index e = 0; e < connectivity_.rows(); ++e) {
+    gather(e, referenceCoordinates, reference);
+    gather(e, currentCoordinates, current);
+    std::span<const double> history(committedHistory_.data() + e * historySize_, historySize_);
+    stress.col(e) = kernel_->cauchyStress(reference, current, *material_, history);
+  }
+  return stress;
+}
+
+}  // namespace cc

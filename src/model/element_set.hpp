@@ -1,0 +1,49 @@
+// ElementSet: the elements of one deck `elements` block as a Contribution, one item per element:
+// gathers the element's reference and current coordinates, calls its ElementKernel with the
+// block's material, and keeps the per-element history (EAS parameters) committed per step.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "elements/element.hpp"
+#include "fem/contribution.hpp"
+#include "mesh/mesh.hpp"
+
+namespace cc {
+
+class ElementSet : public Contribution {
+ public:
+  ElementSet(std::string name, const ElementBlock& block, std::unique_ptr<ElementKernel> kernel,
+             std::shared_ptr<const Material> material);
+
+  std::string name() const override { return name_; }
+  std::size_t itemCount() const override { return static_cast<std::size_t>(connectivity_.rows()); }
+  std::span<const int> itemNodes(std::size_t item) const override {
+    return {connectivity_.row(item).data(), static_cast<std::size_t>(connectivity_.cols())};
+  }
+  LocalStatus evaluate(std::size_t item, const AssemblyState& state, Eigen::VectorXd& force,
+                       Eigen::MatrixXd* tangent) override;
+  void commitStep() override { committedHistory_ = history_; }
+  void restoreStep() override { history_ = committedHistory_; }
+
+  // Volume-averaged Cauchy stress of every element at configuration x (Voigt, 6 x elements).
+  Eigen::Matrix<double, 6, Eigen::Dynamic> cauchyStress(const Eigen::Matrix3Xd& reference,
+                                                        const Eigen::Matrix3Xd& current) const;
+  int elementCount() const { return static_cast<int>(connectivity_.rows()); }
+
+ private:
+  void gather(std::size_t item, const Eigen::Matrix3Xd& coordinates, Eigen::Matrix3Xd& nodes) const;
+
+  std::string name_;
+  Connectivity connectivity_;
+  std::vector<std::size_t> gmshTags_;
+  std::unique_ptr<ElementKernel> kernel_;
+  std::shared_ptr<const Material> material_;
+  int historySize_ = 0;
+  std::vector<double> history_;           // trial, per element historySize_ doubles
+  std::vector<double> committedHistory_;  // at the last converged step
+};
+
+}  // namespace cc

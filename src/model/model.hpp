@@ -1,0 +1,77 @@
+// Model: everything built from a validated ProblemSpec — the mesh, the element sets, the contact
+// pairs, the DofMap with its Dirichlet conditions, the nodal loads and the assembler — behind the
+// NonlinearProblem interface the solver sees. It also turns a converged state into the
+// StepRecord the results writer stores. Built by buildModel(), which checks everything the deck
+// refers to against the mesh and reports InputErrors at the deck's file:line.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "contact/contact_pair.hpp"
+#include "deck/problem_spec.hpp"
+#include "fem/assembler.hpp"
+#include "mesh/mesh.hpp"
+#include "model/boundary_conditions.hpp"
+#include "model/element_set.hpp"
+#include "output/results.hpp"
+#include "solver/nonlinear_problem.hpp"
+
+namespace cc {
+
+class Model : public NonlinearProblem {
+ public:
+  Model() = default;
+  ~Model() override;
+
+  // NonlinearProblem
+  const DofMap& dofMap() const override { return dofs_; }
+  const Eigen::Matrix3Xd& referenceCoordinates() const override { return mesh_.coordinates; }
+  void prescribedValues(double t, Eigen::VectorXd& values) const override;
+  void externalForces(double t, Eigen::VectorXd& force) const override;
+  void assemble(const AssemblyState& state, Eigen::VectorXd& internalForce,
+                SystemMatrices* tangent) override;
+  void commitStep() override;
+  void restoreStep() override;
+
+  const Mesh& mesh() const { return mesh_; }
+  const ProblemSpec& spec() const { return spec_; }
+  const std::vector<std::unique_ptr<ElementSet>>& elementSets() const { return elementSets_; }
+  const std::vector<std::unique_ptr<contact::ContactPair>>& contactPairs() const {
+    return contactPairs_;
+  }
+  int elementCount() const;
+  int contactPointCount() const;
+  const AssemblyTimings& assemblyTimings() const { return assembler_->timings(); }
+  int threads() const { return assembler_->threads(); }
+
+  // The record of a converged step (reactions, set sums, stresses and contact as selected).
+  // The returned record points into buffers owned by the model, valid until the next call.
+  StepRecord stepRecord(int step, double time, int iterations, int cutbacks,
+                        const Eigen::VectorXd& displacement, const Eigen::VectorXd& internalForce,
+                        bool withStress);
+
+ private:
+  friend std::unique_ptr<Model> buildModel(const ProblemSpec& spec);
+
+  ProblemSpec spec_;
+  Mesh mesh_;
+  std::vector<std::unique_ptr<ElementSet>> elementSets_;
+  std::vector<std::unique_ptr<contact::ContactPair>> contactPairs_;
+  BoundaryConditions boundaryConditions_;
+  DofMap dofs_;
+  std::unique_ptr<Assembler> assembler_;
+  // Node sets whose summed reaction is reported (those named by fix, prescribe and load).
+  std::vector<std::string> reactionSets_;
+  // Output buffers referenced by the last StepRecord.
+  Eigen::Matrix3Xd displacementBuffer_, reactionBuffer_;
+  Eigen::Matrix<double, 6, Eigen::Dynamic> stressBuffer_;
+};
+
+// Loads the mesh and builds the model. Throws InputError naming the deck line of whatever does
+// not fit the mesh (unknown group or set, wrong element type for the mesh, contact on a volume
+// group, bad expression, ...).
+std::unique_ptr<Model> buildModel(const ProblemSpec& spec);
+
+}  // namespace cc

@@ -1,0 +1,211 @@
+// buildModel: ProblemSpec + mesh -> Model, with every deck reference checked against the mesh.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <map>
+#include <set>
+
+#include "common/errors.hpp"
+#include "deck/name_matching.hpp"
+#include "elements/element_factory.hpp"
+#include "materials/material.hpp"
+#include "mesh/gmsh_import.hpp"
+#include "mesh/hex18.hpp"
+#include "model/model.hpp"
+
+namespace cc {
+
+namespace {
+
+std::vector<std::string> keysOf(const auto& map) {
+  std::vector<std::string> keys;
+  for (const auto& entry : map) keys.push_back(entry.first);
+  return keys;
+}
+
+int findBlock(const Mesh& mesh, const std::string& name) {
+  for (std::size_t b = 0; b < mesh.blocks.size(); ++b) {
+    if (mesh.blocks[b].name == name) return static_cast<int>(b);
+  }
+  return -1;
+}
+
+std::shared_ptr<const Material> makeMaterial(const MaterialSpec& spec) {
+  switch (spec.model) {
+    case MaterialSpec::Model::StVenantKirchhoff:
+      return makeStVenantKirchhoff(spec.youngsModulus, spec.poissonRatio);
+    case MaterialSpec::Model::NeoHooke: return makeNeoHooke(spec.youngsModulus, spec.poissonRatio);
+  }
+  throw InputError(spec.where, "unknown material model");
+}
+
+// Checks the block's cell type against the element type and prepares it (thickness direction,
+// Hex27 -> Hex18). Returns the block index.
+int prepareBlock(Mesh& mesh, const ElementBlockSpec& spec) {
+  const int block = findBlock(mesh, spec.group);
+  if (block < 0) {
+    if (mesh.faceSets.count(spec.group)) {
+      throw InputError(spec.where, fmt::format("elements: '{}' is a surface group; elements need a "
+                                               "volume group", spec.group));
+    }
+    std::vector<std::string> names;
+    for (const ElementBlock& b : mesh.blocks) names.push_back(b.name);
+    throw InputError(spec.where, fmt::format("elements: the mesh has no volume group '{}'{}",
+                                             spec.group, deck::didYouMean(spec.group, names)));
+  }
+  const CellType cell = mesh.blocks[block].type;
+  const bool quadratic = spec.type == ElementBlockSpec::Type::SolidShell18;
+  if (quadratic && cell != CellType::Hex27) {
+    throw InputError(spec.where,
+                     fmt::format("elements: solid_shell18 needs a quadratic (Hex27) mesh, but group "
+                                 "'{}' has {} elements; mesh it with second-order hexahedra",
+                                 spec.group, toString(cell)));
+  }
+  if (!quadratic && cell != CellType::Hex8) {
+    throw InputError(spec.where,
+                     fmt::format("elements: {} needs linear (Hex8) hexahedra, but group '{}' has {} "
+                                 "elements", elementTypeName(spec.type), spec.group, toString(cell)));
+  }
+  if (spec.thicknessAxis >= 0) orientThickness(mesh, block, spec.thicknessAxis);
+  if (quadratic) convertToSolidShell18(mesh, block);
+  return block;
+}
+
+const FaceSet& requireFaceSet(const Mesh& mesh, const std::string& name,
+                              const SourceLocation& where, const char* role) {
+  const auto it = mesh.faceSets.find(name);
+  if (it != mesh.faceSets.end()) return it->second;
+  if (findBlock(mesh, name) >= 0) {
+    throw InputError(where, fmt::format("contact: {} '{}' is a volume group; a contact surface must "
+                                        "be a face (surface) group", role, name));
+  }
+  if (mesh.nodeSets.count(name)) {
+    throw InputError(where, fmt::format("contact: {} '{}' is a curve or point group; a contact "
+                                        "surface must be a face (surface) group", role, name));
+  }
+  throw InputError(where, fmt::format("contact: the mesh has no face group '{}'{}", name,
+                                      deck::didYouMean(name, keysOf(mesh.faceSets))));
+}
+
+// Every node of a contact face must belong to a declared element (else: the group's volume has
+// no `elements` line, or the faces are lateral faces of converted 18-node solid-shells).
+void requireAttached(const FaceSet& faces, const std::vector<bool>& active,
+                     const SourceLocation& where) {
+  for (Eigen::Index f = 0; f < faces.connectivity.rows(); ++f) {
+    for (Eigen::Index k = 0; k < faces.connectivity.cols(); ++k) {
+      if (!active[faces.connectivity(f, k)]) {
+        throw InputError(where, fmt::format("contact: face group '{}' has nodes that belong to no "
+                                            "element (is its volume declared by an `elements` "
+                                            "line? lateral faces of solid_shell18 cannot be contact "
+                                            "surfaces)", faces.name));
+      }
+    }
+  }
+}
+
+contact::ContactPairConfig pairConfig(const ContactSpec& spec) {
+  contact::ContactPairConfig config;
+  config.name = spec.name;
+  switch (spec.kind) {
+    case ContactSpec::Kind::NodeToSegment: config.kind = contact::PointKind::NodeToSegment; break;
+    case ContactSpec::Kind::SegmentToSegment:
+      config.kind = contact::PointKind::SegmentToSegment;
+      break;
+    case ContactSpec::Kind::SegmentToAnalytical:
+      config.kind = contact::PointKind::SegmentToAnalytical;
+      break;
+  }
+  config.law = {spec.penaltyNormal, spec.penaltyTangential, spec.friction};
+  config.integrationPoints = spec.integrationPoints;
+  config.tangentMode = spec.tangentMode;
+  config.parts = spec.parts;
+  return config;
+}
+
+contact::SurfaceMotion surfaceMotion(const RigidSurfaceSpec& spec) {
+  std::vector<std::shared_ptr<ScalarFunction>> components(3);
+  for (int c = 0; c < 3; ++c) {
+    if (spec.motion[c]) components[c] = makeFunction(*spec.motion[c]);
+  }
+  return [components](double t) {
+    Eigen::Vector3d offset = Eigen::Vector3d::Zero();
+    for (int c = 0; c < 3; ++c) {
+      if (components[c]) offset[c] = (*components[c])(t);
+    }
+    return offset;
+  };
+}
+
+std::unique_ptr<contact::ContactPair> makePair(const ContactSpec& spec, const ProblemSpec& problem,
+                                               const Mesh& mesh, const std::vector<bool>& active) {
+  const FaceSet& master = requireFaceSet(mesh, spec.master, spec.where, "master");
+  requireAttached(master, active, spec.where);
+  const contact::ContactPairConfig config = pairConfig(spec);
+  if (spec.kind == ContactSpec::Kind::SegmentToAnalytical) {
+    const auto rigid = std::find_if(problem.rigidSurfaces.begin(), problem.rigidSurfaces.end(),
+                                    [&](const RigidSurfaceSpec& r) { return r.name == spec.slave; });
+    if (rigid == problem.rigidSurfaces.end()) {
+      throw InputError(spec.where, fmt::format("contact stas: no rigid surface '{}'", spec.slave));
+    }
+    return contact::ContactPair::segmentToAnalytical(
+        config, master, contact::RigidSurface::fromSpec(*rigid), surfaceMotion(*rigid));
+  }
+  const FaceSet& slave = requireFaceSet(mesh, spec.slave, spec.where, "slave");
+  requireAttached(slave, active, spec.where);
+  if (spec.kind == ContactSpec::Kind::NodeToSegment) {
+    return contact::ContactPair::nodeToSegment(config, mesh, master, slave);
+  }
+  return contact::ContactPair::segmentToSegment(config, master, slave);
+}
+
+}  // namespace
+
+std::unique_ptr<Model> buildModel(const ProblemSpec& spec) {
+  auto model = std::make_unique<Model>();
+  model->spec_ = spec;
+  model->mesh_ = loadMesh(spec.mesh);
+  Mesh& mesh = model->mesh_;
+
+  std::map<std::string, std::shared_ptr<const Material>> materials;
+  for (const MaterialSpec& m : spec.materials) materials[m.name] = makeMaterial(m);
+
+  std::set<int> usedBlocks;
+  std::vector<bool> active(mesh.numNodes(), false);
+  for (const ElementBlockSpec& blockSpec : spec.elementBlocks) {
+    const int block = prepareBlock(mesh, blockSpec);
+    if (!usedBlocks.insert(block).second) {
+      throw InputError(blockSpec.where,
+                       fmt::format("elements: group '{}' is already declared", blockSpec.group));
+    }
+    const ElementBlock& elements = mesh.blocks[block];
+    for (Eigen::Index e = 0; e < elements.connectivity.rows(); ++e) {
+      for (Eigen::Index k = 0; k < elements.connectivity.cols(); ++k) active[elements.connectivity(e, k)] = true;
+    }
+    model->elementSets_.push_back(std::make_unique<ElementSet>(
+        blockSpec.group, elements, makeElementKernel(blockSpec), materials.at(blockSpec.material)));
+  }
+
+  model->boundaryConditions_.build(spec, mesh);
+  for (const ContactSpec& c : spec.contacts) {
+    model->contactPairs_.push_back(makePair(c, spec, mesh, active));
+  }
+
+  model->dofs_ = DofMap(active, model->boundaryConditions_.constrainedDofs(mesh.numNodes()));
+  std::vector<Contribution*> contributions;
+  for (auto& set : model->elementSets_) contributions.push_back(set.get());
+  for (auto& pair : model->contactPairs_) contributions.push_back(pair.get());
+  model->assembler_ = std::make_unique<Assembler>(model->dofs_, contributions);
+
+  auto addReactionSet = [&](const std::string& name) {
+    if (std::find(model->reactionSets_.begin(), model->reactionSets_.end(), name) ==
+        model->reactionSets_.end()) {
+      model->reactionSets_.push_back(name);
+    }
+  };
+  for (const FixSpec& f : spec.fixes) addReactionSet(f.set);
+  for (const PrescribeSpec& p : spec.prescribed) addReactionSet(p.set);
+  for (const LoadSpec& l : spec.loads) addReactionSet(l.set);
+  return model;
+}
+
+}  // namespace cc
