@@ -1,0 +1,200 @@
+// The assumed-strain kernel shared by SolidShell8 and SolidShell18: covariant strains at the
+// sampling points, ANS interpolation to the Gauss points, EAS condensation, force and tangent.
+#pragma once
+
+#include <Eigen/LU>
+#include <limits>
+#include <memory>
+#include <vector>
+
+#include "elements/kinematics_common.hpp"
+#include "elements/solid_shell.hpp"
+#include "elements/solid_shell_eas.hpp"
+#include "elements/solid_shell_scheme.hpp"
+
+namespace cc::solidshell {
+
+// Frame choices (see solid_shell.hpp): the ANS interpolation acts on covariant components at the
+// sampling points; each Gauss point maps its assumed covariant strain to Cartesian components
+// with its own Jacobian (exact for homogeneous deformations, so the membrane patch test
+// passes), and the Cartesian strain feeds the 3D material law unchanged.
+template <class Shape, int NG>
+class AssumedStrainKernel {
+ public:
+  static constexpr int N = Shape::kNodes;
+  using Nodes = tl::NodeMatrix<N>;
+  using Vector = tl::ElementVector<N>;
+  using Matrix = tl::ElementMatrix<N>;
+  using Scheme = AssumedStrainScheme<N, NG>;
+
+  AssumedStrainKernel(Scheme scheme, std::vector<EasMode> modes)
+      : scheme_(std::move(scheme)), modes_(std::move(modes)) {}
+
+  int easParameters() const { return static_cast<int>(modes_.size()); }
+
+  // fint and, if tangent != nullptr, the tangent with the EAS parameters condensed out:
+  // K = K_uu - K_ua K_aa^-1 K_au. alpha: warm start in, converged parameters out.
+  ElementStatus evaluate(const Nodes& X, const Nodes& x, const Material& material, EasVector& alpha,
+                         Vector& fint, Matrix* tangent) const {
+    auto state = std::make_unique<State>();
+    if (ElementStatus status = kinematics(X, x, *state); !status.ok()) return status;
+    EasSystem system;
+    if (ElementStatus status = solveEnhancedStrains(state->eas, material, alpha, system);
+        !status.ok()) {
+      return status;
+    }
+    assemble(*state, system, fint, tangent);
+    if (!fint.allFinite()) return tl::notFinite("internal force");
+    if (tangent != nullptr && !tangent->allFinite()) return tl::notFinite("tangent");
+    return {};
+  }
+
+  // S at the Gauss points (converged EAS parameters) with their reference positions.
+  ElementStatus gaussPointStresses(const Nodes& X, const Nodes& x, const Material& material,
+                                   EasVector alpha, std::vector<GaussPointStress>& stresses) const {
+    auto state = std::make_unique<State>();
+    EasSystem system;
+    if (ElementStatus status = kinematics(X, x, *state); !status.ok()) return status;
+    if (ElementStatus status = solveEnhancedStrains(state->eas, material, alpha, system);
+        !status.ok()) {
+      return status;
+    }
+    stresses.resize(NG);
+    for (int g = 0; g < NG; ++g) {
+      stresses[g].referencePosition = X * Shape::values(scheme_.gaussPoints[g]);
+      stresses[g].secondPiola = state->eas[g].stress;
+    }
+    return {};
+  }
+
+  // Cauchy stress averaged over the current volume, sum tau w det J / sum det F w det J, with the
+  // compatible F and the enhanced S. Quiet NaNs if the element cannot be evaluated.
+  Vector6d cauchyStress(const Nodes& X, const Nodes& x, const Material& material,
+                        EasVector alpha) const {
+    const Vector6d failed = Vector6d::Constant(std::numeric_limits<double>::quiet_NaN());
+    auto state = std::make_unique<State>();
+    EasSystem system;
+    if (!kinematics(X, x, *state).ok()) return failed;
+    if (!solveEnhancedStrains(state->eas, material, alpha, system).ok()) return failed;
+    Eigen::Matrix3d kirchhoffIntegral = Eigen::Matrix3d::Zero();
+    double currentVolume = 0.0;
+    for (int g = 0; g < NG; ++g) {
+      const Eigen::Matrix3d& F = state->deformationGradient[g];
+      const double volume = state->eas[g].volume;
+      kirchhoffIntegral += volume * tl::kirchhoffStress(F, stressFromVoigt(state->eas[g].stress));
+      currentVolume += volume * F.determinant();
+    }
+    return voigtFromStress(kirchhoffIntegral / currentVolume);
+  }
+
+ private:
+  // Everything the Gauss loop needs; heap-allocated once per call (the Hex18 arrays are large).
+  struct State {
+    std::vector<Vector6d> pointStrain;                     // covariant E at sampling points
+    std::vector<tl::StrainDisplacement<N>> pointB;         // covariant dE/dx there
+    std::array<tl::StrainDisplacement<N>, NG> cartesianB;  // dE/dx at the Gauss points
+    std::array<Matrix6d, NG> toCartesian;                  // T_g: covariant -> Cartesian
+    std::array<Eigen::Matrix3d, NG> deformationGradient;   // compatible F (output only)
+    std::array<EasGaussPoint, NG> eas;
+  };
+
+  ElementStatus kinematics(const Nodes& X, const Nodes& x, State& state) const {
+    if (!X.allFinite()) return tl::notFinite("reference coordinates");
+    if (!x.allFinite()) return tl::notFinite("current coordinates");
+    const Eigen::Matrix3d centreJacobian = X * scheme_.centreGradients;
+    const double centreDet = centreJacobian.determinant();
+    if (!(centreDet > 0.0))
+      return tl::invertedJacobian("reference (element centre)", -1, centreDet);
+    const Matrix6d centreToCartesian = strainTransformation(centreJacobian.inverse());
+
+    const std::size_t numPoints = scheme_.samplingPoints.size();
+    state.pointStrain.resize(numPoints);
+    state.pointB.resize(numPoints);
+    for (std::size_t p = 0; p < numPoints; ++p) {
+      const tl::ShapeGradients<N>& dNdxi = scheme_.samplingGradients[p];
+      const Eigen::Matrix3d currentBasis = x * dNdxi;
+      state.pointStrain[p] = tl::covariantStrainVoigt(X * dNdxi, currentBasis);
+      tl::strainDisplacementMatrix<N>(currentBasis, dNdxi, state.pointB[p]);
+    }
+
+    for (int g = 0; g < NG; ++g) {
+      const Eigen::Matrix3d jacobian = X * scheme_.samplingGradients[g];
+      const double detJ = jacobian.determinant();
+      if (!(detJ > 0.0)) return tl::invertedJacobian("reference", g, detJ);
+      const Eigen::Matrix3d currentBasis = x * scheme_.samplingGradients[g];
+      const double currentDet = currentBasis.determinant();
+      if (!(currentDet > 0.0)) return tl::invertedJacobian("current", g, currentDet);
+      const Eigen::Matrix3d inverseJacobian = jacobian.inverse();
+
+      Vector6d covariantStrain = Vector6d::Zero();
+      tl::StrainDisplacement<N> covariantB = tl::StrainDisplacement<N>::Zero();
+      for (int k = 0; k < 6; ++k) {
+        for (const InterpolationTerm& term : scheme_.terms[g][k]) {
+          covariantStrain[k] += term.weight * state.pointStrain[term.point][k];
+          covariantB.row(k) += term.weight * state.pointB[term.point].row(k);
+        }
+      }
+      state.toCartesian[g] = strainTransformation(inverseJacobian);
+      state.cartesianB[g].noalias() = state.toCartesian[g] * covariantB;
+      state.deformationGradient[g] = currentBasis * inverseJacobian;
+
+      EasGaussPoint& point = state.eas[g];
+      point.compatibleStrain = state.toCartesian[g] * covariantStrain;
+      point.volume = scheme_.gaussWeights[g] * detJ;
+      // Simo-Rifai push-forward of the centre-frame modes: orthogonal to constant stresses.
+      point.enhancement =
+          (centreDet / detJ) * centreToCartesian * easModeMatrix(modes_, scheme_.gaussPoints[g]);
+    }
+    return {};
+  }
+
+  void assemble(const State& state, const EasSystem& system, Vector& fint, Matrix* tangent) const {
+    fint.setZero();
+    const int numAlpha = easParameters();
+    Eigen::Matrix<double, Eigen::Dynamic, 3 * N, 0, kMaxEasParameters, 3 * N> coupling =
+        Eigen::Matrix<double, Eigen::Dynamic, 3 * N, 0, kMaxEasParameters, 3 * N>::Zero(numAlpha,
+                                                                                        3 * N);
+    if (tangent != nullptr) tangent->setZero();
+    // Contravariant stresses S^ij = T^T S, gathered per sampling point for the geometric part:
+    // the second variation of sum_p w E_k(p) is that of E_k at point p.
+    std::vector<Vector6d> pointStress(scheme_.samplingPoints.size(), Vector6d::Zero());
+    for (int g = 0; g < NG; ++g) {
+      const EasGaussPoint& point = state.eas[g];
+      tl::addInternalForce<N>(state.cartesianB[g], point.stress, point.volume, fint);
+      if (numAlpha > 0) {
+        coupling.noalias() += point.enhancement.transpose() *
+                              (point.volume * point.materialTangent) * state.cartesianB[g];
+      }
+      if (tangent == nullptr) continue;
+      tl::addMaterialStiffnessUpperBlocks<N>(state.cartesianB[g], point.materialTangent,
+                                             point.volume, *tangent);
+      const Vector6d contravariantStress = state.toCartesian[g].transpose() * point.stress;
+      for (int k = 0; k < 6; ++k) {
+        for (const InterpolationTerm& term : scheme_.terms[g][k]) {
+          pointStress[term.point][k] += term.weight * point.volume * contravariantStress[k];
+        }
+      }
+    }
+    if (tangent != nullptr) {
+      for (std::size_t p = 0; p < pointStress.size(); ++p) {
+        tl::addGeometricStiffnessUpperBlocks<N>(scheme_.samplingGradients[p],
+                                                stressFromVoigt(pointStress[p]), 1.0, *tangent);
+      }
+      tl::mirrorUpperBlocks<N>(*tangent);
+    }
+    if (numAlpha == 0) return;
+    // Static condensation of the local equations R_a + K_aa da + K_au du = 0; the force carries
+    // the (round-off sized) correction of the last local residual, K_ua da = -K_ua K_aa^-1 R_a.
+    const Eigen::FullPivLU<EasMatrix> factorization(system.stiffness);
+    const EasVector residualCorrection = factorization.solve(system.residual);
+    fint.noalias() -= coupling.transpose() * residualCorrection;
+    if (tangent != nullptr) {
+      tangent->noalias() -= coupling.transpose() * factorization.solve(coupling);
+    }
+  }
+
+  Scheme scheme_;
+  std::vector<EasMode> modes_;
+};
+
+}  // namespace cc::solidshell
