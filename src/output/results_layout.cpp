@@ -1,0 +1,69 @@
+// Step and link naming and the compound row types of the results file layout.
+#include "output/results_layout.hpp"
+
+#include <cstddef>
+#include <cstdio>
+
+namespace cc::layout {
+
+std::string stepGroupName(int step) {
+  char name[32];
+  std::snprintf(name, sizeof name, "%06d", step);
+  return name;
+}
+
+std::string stepGroupPath(int step) {
+  return std::string(kStepsGroup) + "/" + stepGroupName(step);
+}
+
+std::string linkName(const std::string& name) {
+  if (name.empty() || name == "." || name == "..") return "_" + name;
+  std::string link = name;
+  for (char& c : link)
+    if (c == '/') c = '_';
+  return link;
+}
+
+const char* cellTypeLabel(CellType type) {
+  switch (type) {
+    case CellType::Hex8:
+      return "Hex8";
+    case CellType::Hex27:
+      return "Hex27";
+    case CellType::Hex18:
+      return "Hex18";
+    case CellType::Quad4:
+      return "Quad4";
+    case CellType::Quad9:
+      return "Quad9";
+  }
+  return "unknown";
+}
+
+h5::Type convergenceRowType() {
+  h5::Type type(H5Tcreate(H5T_COMPOUND, sizeof(ConvergenceRow)));
+  const hid_t id = type.get();
+  H5Tinsert(id, "step", offsetof(ConvergenceRow, step), H5T_NATIVE_INT);
+  H5Tinsert(id, "attempt", offsetof(ConvergenceRow, attempt), H5T_NATIVE_INT);
+  H5Tinsert(id, "iteration", offsetof(ConvergenceRow, iteration), H5T_NATIVE_INT);
+  H5Tinsert(id, "time", offsetof(ConvergenceRow, time), H5T_NATIVE_DOUBLE);
+  H5Tinsert(id, "residual", offsetof(ConvergenceRow, residual), H5T_NATIVE_DOUBLE);
+  H5Tinsert(id, "relative_residual", offsetof(ConvergenceRow, relativeResidual), H5T_NATIVE_DOUBLE);
+  H5Tinsert(id, "energy", offsetof(ConvergenceRow, energy), H5T_NATIVE_DOUBLE);
+  H5Tinsert(id, "relative_energy", offsetof(ConvergenceRow, relativeEnergy), H5T_NATIVE_DOUBLE);
+  H5Tinsert(id, "wall_seconds", offsetof(ConvergenceRow, wallSeconds), H5T_NATIVE_DOUBLE);
+  return type;
+}
+
+h5::Type cutbackRowType() {
+  h5::Type type(H5Tcreate(H5T_COMPOUND, sizeof(CutbackRow)));
+  const hid_t id = type.get();
+  const h5::Type text = h5::variableString();
+  H5Tinsert(id, "step", offsetof(CutbackRow, step), H5T_NATIVE_INT);
+  H5Tinsert(id, "time", offsetof(CutbackRow, time), H5T_NATIVE_DOUBLE);
+  H5Tinsert(id, "new_dt", offsetof(CutbackRow, newDt), H5T_NATIVE_DOUBLE);
+  H5Tinsert(id, "reason", offsetof(CutbackRow, reason), text.get());
+  return type;
+}
+
+}  // namespace cc::layout

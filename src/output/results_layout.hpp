@@ -1,0 +1,71 @@
+// Names and row types of the results file layout (docs/output-format.md), shared by the writer,
+// the XDMF sidecar, the reader and the run comparison so that every path is spelled once.
+#pragma once
+
+#include <string>
+
+#include "mesh/mesh.hpp"
+#include "output/hdf5_io.hpp"
+
+namespace cc::layout {
+
+inline constexpr const char* kFormatName = "CovContact results";
+inline constexpr int kFormatVersion = 1;
+
+inline constexpr const char* kMeshGroup = "/mesh";
+inline constexpr const char* kCoordinates = "/mesh/coordinates";
+inline constexpr const char* kBlocksGroup = "/mesh/blocks";
+inline constexpr const char* kNodeSetsGroup = "/mesh/node_sets";
+inline constexpr const char* kFaceSetsGroup = "/mesh/face_sets";
+inline constexpr const char* kStepsGroup = "/steps";
+inline constexpr const char* kConvergence = "/convergence";
+inline constexpr const char* kCutbacks = "/cutbacks";
+inline constexpr const char* kSummaryGroup = "/summary";
+
+// Dataset names inside a step group /steps/<6-digit step>.
+inline constexpr const char* kDisplacement = "displacement";
+inline constexpr const char* kReaction = "reaction";
+inline constexpr const char* kStress = "stress";
+inline constexpr int kStressComponents = 6;  // Voigt order xx yy zz xy yz xz
+inline constexpr const char* kSetReactions = "set_reactions";
+inline constexpr const char* kContactGroup = "contact";
+inline constexpr const char* kTotalForce = "total_force";
+// 0..M-1 per contact pair: the vertex cells of its point cloud in the XDMF sidecar.
+inline constexpr const char* kVertexIds = "vertex_ids";
+
+// "000042": zero-padded so that the steps sort in order in any HDF5 viewer.
+std::string stepGroupName(int step);
+// Full path of a step group, "/steps/000042".
+std::string stepGroupPath(int step);
+// A user name (block, set, pair) as an HDF5 link name: '/' would open a sub-group, so it becomes
+// '_'; "." (the group itself) becomes "_". The original name is kept in the "name" attribute.
+std::string linkName(const std::string& name);
+// "Hex8", "Hex27", ... as stored in the cell_type attributes.
+const char* cellTypeLabel(CellType type);
+
+// One row of /convergence (memory layout of the compound type).
+struct ConvergenceRow {
+  int step;
+  int attempt;
+  int iteration;
+  double time;
+  double residual;
+  double relativeResidual;
+  double energy;
+  double relativeEnergy;
+  double wallSeconds;
+};
+
+// One row of /cutbacks; the reason is a variable-length UTF-8 string.
+struct CutbackRow {
+  int step;
+  double time;
+  double newDt;
+  const char* reason;
+};
+
+// File compound types of the two tables (also the memory types: fields are named and offset).
+h5::Type convergenceRowType();
+h5::Type cutbackRowType();
+
+}  // namespace cc::layout

@@ -1,0 +1,331 @@
+// ResultsWriter: HDF5 file creation, per-step groups with flush, growing convergence/cut-back
+// tables, the /summary group, and driving the XDMF and CSV sidecars.
+#include "output/results_writer.hpp"
+
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <optional>
+#include <stdexcept>
+
+#include "output/reactions_csv.hpp"
+#include "output/results_layout.hpp"
+#include "output/results_mesh.hpp"
+#include "output/xdmf_writer.hpp"
+
+namespace cc {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// Rows per chunk of the growing tables: one chunk (about 40 KiB) holds the Newton history of
+// dozens of steps, so appending rarely allocates.
+constexpr hsize_t kTableChunkRows = 512;
+
+// The HDF5 1.8 file format. Not 1.10: its superblock marks the file "open for writing", and
+// after a SIGKILL every reader refuses the file until `h5clear -s` is run. Not the earliest
+// format: its groups (no checksums) were damaged about 4x as often by a kill inside a flush.
+// Measured with check_kill.py; numbers in docs/output-format.md.
+constexpr H5F_libver_t kFormatLowBound = H5F_LIBVER_V18;
+constexpr H5F_libver_t kFormatHighBound = H5F_LIBVER_V18;
+
+// replacedByRename: the file is rewritten as a temporary renamed over it (the XDMF), which needs
+// a writable directory even when the file itself exists and is writable.
+void probeWritable(const fs::path& path, const char* what, bool replacedByRename) {
+  const auto fail = [&](const std::string& why) {
+    throw OutputError("cannot write " + std::string(what) + " '" + path.string() + "': " + why);
+  };
+  std::error_code error;
+  if (fs::exists(path, error)) {
+    if (fs::is_directory(path, error)) fail("it is a directory");
+    if (::access(path.c_str(), W_OK) != 0) fail(std::strerror(errno));
+    if (!replacedByRename) return;
+  }
+  const fs::path directory = path.has_parent_path() ? path.parent_path() : fs::path(".");
+  if (!fs::is_directory(directory, error))
+    fail("directory '" + directory.string() + "' does not exist");
+  if (::access(directory.c_str(), W_OK | X_OK) != 0)
+    fail("directory '" + directory.string() + "': " + std::strerror(errno));
+}
+
+h5::Dataset createTable(h5::FileRef file, const char* name, hid_t rowType) {
+  const std::string operation = std::string("creating table '") + name + "'";
+  const hsize_t initialRows = 0;
+  const hsize_t unlimited = H5S_UNLIMITED;
+  h5::Space space(h5::check(H5Screate_simple(1, &initialRows, &unlimited), file.path, operation));
+  h5::PropertyList creation(h5::check(H5Pcreate(H5P_DATASET_CREATE), file.path, operation));
+  h5::checkStatus(H5Pset_chunk(creation.get(), 1, &kTableChunkRows), file.path, operation);
+  return h5::Dataset(h5::check(
+      H5Dcreate2(file.id, name, rowType, space.get(), H5P_DEFAULT, creation.get(), H5P_DEFAULT),
+      file.path, operation));
+}
+
+void appendRow(h5::FileRef file, hid_t table, const char* name, hid_t rowType, const void* row) {
+  const std::string operation = std::string("appending to table '") + name + "'";
+  h5::Space current(h5::check(H5Dget_space(table), file.path, operation));
+  hsize_t rows = 0;
+  H5Sget_simple_extent_dims(current.get(), &rows, nullptr);
+  const hsize_t grown = rows + 1;
+  const hsize_t one = 1;
+  h5::checkStatus(H5Dset_extent(table, &grown), file.path, operation);
+  h5::Space fileSpace(h5::check(H5Dget_space(table), file.path, operation));
+  h5::checkStatus(
+      H5Sselect_hyperslab(fileSpace.get(), H5S_SELECT_SET, &rows, nullptr, &one, nullptr),
+      file.path, operation);
+  h5::Space memorySpace(h5::check(H5Screate_simple(1, &one, nullptr), file.path, operation));
+  h5::checkStatus(H5Dwrite(table, rowType, memorySpace.get(), fileSpace.get(), H5P_DEFAULT, row),
+                  file.path, operation);
+}
+
+void requireColumns(const StepRecord& step, const char* field, Eigen::Index actual,
+                    Eigen::Index expected) {
+  if (actual != expected)
+    throw std::invalid_argument("step " + std::to_string(step.step) + ": " + field + " has " +
+                                std::to_string(actual) + " entries, expected " +
+                                std::to_string(expected));
+}
+
+void validateContact(const StepRecord& step, const ContactPairRecord& pair) {
+  const Eigen::Index points = pair.position.cols();
+  const std::string prefix = "contact pair '" + pair.name + "' ";
+  const auto require = [&](const char* field, Eigen::Index size) {
+    requireColumns(step, (prefix + field).c_str(), size, points);
+  };
+  require("gap", pair.gap.size());
+  require("normal traction", pair.normalTraction.size());
+  require("tangential traction", pair.tangentialTraction.cols());
+  require("state", pair.state.size());
+  require("slip increment", pair.slipIncrement.size());
+  require("accumulated slip", pair.accumulatedSlip.size());
+  require("weight", pair.weight.size());
+  requireColumns(step, (prefix + "slave nodal force").c_str(), pair.slaveNodalForce.cols(),
+                 static_cast<Eigen::Index>(pair.slaveNodes.size()));
+}
+
+}  // namespace
+
+std::string xdmfPathFor(const std::string& h5Path) {
+  return fs::path(h5Path).replace_extension(".xdmf").string();
+}
+
+std::string csvPathFor(const std::string& h5Path) {
+  fs::path path(h5Path);
+  return (path.parent_path() / (path.stem().string() + "_reactions.csv")).string();
+}
+
+void checkOutputWritable(const std::string& h5Path, const OutputSelection& selection) {
+  probeWritable(h5Path, "results file", false);
+  if (selection.xdmf) probeWritable(xdmfPathFor(h5Path), "XDMF file", true);
+  if (selection.csv) probeWritable(csvPathFor(h5Path), "CSV file", false);
+}
+
+struct ResultsWriter::State {
+  std::string path;
+  OutputSelection selection;
+  long numNodes = 0;
+  long numElements = 0;
+  h5::File file;
+  h5::Group steps;
+  h5::Type convergenceType = layout::convergenceRowType();
+  h5::Type cutbackType = layout::cutbackRowType();
+  h5::Dataset convergence;
+  h5::Dataset cutbacks;
+  std::optional<XdmfWriter> xdmf;
+  std::optional<ReactionsCsv> csv;
+
+  h5::FileRef ref() const { return {file.get(), path}; }
+  void flush() const { h5::checkStatus(H5Fflush(file.get(), H5F_SCOPE_GLOBAL), path, "flushing"); }
+};
+
+ResultsWriter::ResultsWriter() = default;
+
+ResultsWriter::~ResultsWriter() {
+  h5::QuietErrors quiet;
+  state_.reset();
+}
+
+bool ResultsWriter::isOpen() const {
+  return state_ != nullptr;
+}
+
+const std::string& ResultsWriter::path() const {
+  static const std::string none;
+  return state_ ? state_->path : none;
+}
+
+void ResultsWriter::open(const std::string& path, const RunInfo& info, const Mesh& mesh,
+                         const OutputSelection& selection) {
+  if (state_) throw std::logic_error("ResultsWriter::open: '" + state_->path + "' is still open");
+  checkOutputWritable(path, selection);
+  h5::QuietErrors quiet;
+  auto state = std::make_unique<State>();
+  state->path = path;
+  state->selection = selection;
+  state->numNodes = mesh.numNodes();
+  h5::PropertyList access(h5::check(H5Pcreate(H5P_FILE_ACCESS), path, "creating the file"));
+  h5::checkStatus(H5Pset_libver_bounds(access.get(), kFormatLowBound, kFormatHighBound), path,
+                  "choosing the file format");
+  state->file =
+      h5::File(h5::check(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, access.get()), path,
+                         "creating the file"));
+  const h5::FileRef file = state->ref();
+  h5::writeAttribute(file, file.id, "format", std::string(layout::kFormatName));
+  h5::writeAttribute(file, file.id, "format_version", layout::kFormatVersion);
+  h5::writeAttribute(file, file.id, "title", info.title);
+  h5::writeAttribute(file, file.id, "version", info.version);
+  h5::writeAttribute(file, file.id, "deck_path", info.deckPath);
+  h5::writeAttribute(file, file.id, "command_line", info.commandLine);
+  h5::writeAttribute(file, file.id, "deck_text", info.deckText);
+
+  std::vector<XdmfBlock> visualBlocks = writeMesh(file, mesh);
+  for (const ElementBlock& block : mesh.blocks) state->numElements += block.connectivity.rows();
+  state->steps = h5::createGroup(file, file.id, "steps");
+  state->convergence = createTable(file, layout::kConvergence, state->convergenceType.get());
+  state->cutbacks = createTable(file, layout::kCutbacks, state->cutbackType.get());
+  state->flush();
+
+  if (selection.xdmf)
+    state->xdmf.emplace(xdmfPathFor(path), fs::path(path).filename().string(), state->numNodes,
+                        state->numElements, std::move(visualBlocks));
+  if (selection.csv) state->csv.emplace(csvPathFor(path), selection.contact);
+  state_ = std::move(state);
+}
+
+void ResultsWriter::writeStep(const StepRecord& step) {
+  if (!state_) throw std::logic_error("ResultsWriter::writeStep: no file is open");
+  const OutputSelection& selection = state_->selection;
+  const auto requireNodal = [&](bool selected, const Eigen::Matrix3Xd* field, const char* name) {
+    if (!selected) return;
+    if (field == nullptr)
+      throw std::invalid_argument("step " + std::to_string(step.step) + ": " + name +
+                                  " is selected for output but was not given");
+    requireColumns(step, name, field->cols(), state_->numNodes);
+  };
+  requireNodal(selection.displacement, step.displacement, "displacement");
+  requireNodal(selection.reaction, step.reaction, "reaction");
+  if (selection.stress && step.stress != nullptr)
+    requireColumns(step, "stress", step.stress->cols(), state_->numElements);
+  if (selection.contact)
+    for (const ContactPairRecord& pair : step.contact) validateContact(step, pair);
+
+  h5::QuietErrors quiet;
+  {
+    h5::Group group =
+        h5::createGroup(state_->ref(), state_->steps.get(), layout::stepGroupName(step.step));
+    writeStepGroup(step, group.get());
+  }
+  // Flush before the sidecars mention the step, so they never point at unwritten data.
+  state_->flush();
+
+  if (state_->xdmf) {
+    XdmfStep shown{step.step,
+                   step.time,
+                   selection.displacement,
+                   selection.reaction,
+                   selection.stress && step.stress != nullptr,
+                   {}};
+    if (selection.contact)
+      for (const ContactPairRecord& pair : step.contact)
+        shown.contactPairs.emplace_back(pair.name, static_cast<long>(pair.position.cols()));
+    state_->xdmf->appendStep(shown);
+  }
+  if (state_->csv) state_->csv->appendStep(step);
+}
+
+void ResultsWriter::writeStepGroup(const StepRecord& step, hid_t group) {
+  const h5::FileRef file = state_->ref();
+  const OutputSelection& selection = state_->selection;
+  h5::writeAttribute(file, group, "step", step.step);
+  h5::writeAttribute(file, group, "time", step.time);
+  h5::writeAttribute(file, group, "iterations", step.iterations);
+  h5::writeAttribute(file, group, "cutbacks", step.cutbacks);
+  const auto numNodes = static_cast<hsize_t>(state_->numNodes);
+  if (selection.displacement)
+    h5::writeDoubles(file, group, layout::kDisplacement, step.displacement->data(), numNodes, 3);
+  if (selection.reaction)
+    h5::writeDoubles(file, group, layout::kReaction, step.reaction->data(), numNodes, 3);
+  if (selection.stress && step.stress != nullptr)
+    h5::writeDoubles(file, group, layout::kStress, step.stress->data(),
+                     static_cast<hsize_t>(step.stress->cols()), layout::kStressComponents);
+
+  Eigen::Matrix3Xd setForces(3, static_cast<Eigen::Index>(step.setReactions.size()));
+  std::vector<std::string> setNames;
+  for (const auto& [name, force] : step.setReactions) {
+    setForces.col(static_cast<Eigen::Index>(setNames.size())) = force;
+    setNames.push_back(name);
+  }
+  h5::Dataset setReactions =
+      h5::writeDoubles(file, group, layout::kSetReactions, setForces.data(), setNames.size(), 3);
+  h5::writeAttribute(file, setReactions.get(), "names", setNames);
+  if (selection.contact && !step.contact.empty()) writeContact(step, group);
+}
+
+void ResultsWriter::writeContact(const StepRecord& step, hid_t stepGroup) {
+  const h5::FileRef file = state_->ref();
+  h5::Group contact = h5::createGroup(file, stepGroup, layout::kContactGroup);
+  for (const ContactPairRecord& pair : step.contact) {
+    h5::Group group = h5::createGroup(file, contact.get(), layout::linkName(pair.name));
+    const hid_t id = group.get();
+    const auto points = static_cast<hsize_t>(pair.position.cols());
+    h5::writeAttribute(file, id, "name", pair.name);
+    h5::writeDoubles(file, id, "position", pair.position.data(), points, 3);
+    h5::writeDoubles(file, id, "gap", pair.gap.data(), points, 0);
+    h5::writeDoubles(file, id, "normal_traction", pair.normalTraction.data(), points, 0);
+    h5::writeDoubles(file, id, "tangential_traction", pair.tangentialTraction.data(), points, 3);
+    h5::writeInts(file, id, "state", pair.state.data(), points, 0);
+    h5::writeDoubles(file, id, "slip_increment", pair.slipIncrement.data(), points, 0);
+    h5::writeDoubles(file, id, "accumulated_slip", pair.accumulatedSlip.data(), points, 0);
+    h5::writeDoubles(file, id, "weight", pair.weight.data(), points, 0);
+    const Eigen::VectorXi vertexIds = Eigen::VectorXi::LinSpaced(static_cast<Eigen::Index>(points),
+                                                                 0, static_cast<int>(points) - 1);
+    h5::writeInts(file, id, layout::kVertexIds, vertexIds.data(), points, 0);
+    h5::writeDoubles(file, id, layout::kTotalForce, pair.totalForce.data(), 3, 0);
+    h5::writeInts(file, id, "slave_nodes", pair.slaveNodes.data(), pair.slaveNodes.size(), 0);
+    h5::writeDoubles(file, id, "slave_nodal_force", pair.slaveNodalForce.data(),
+                     pair.slaveNodes.size(), 3);
+  }
+}
+
+void ResultsWriter::appendIteration(const IterationRecord& iteration) {
+  if (!state_) throw std::logic_error("ResultsWriter::appendIteration: no file is open");
+  h5::QuietErrors quiet;
+  const layout::ConvergenceRow row{
+      iteration.step,   iteration.attempt,        iteration.iteration,
+      iteration.time,   iteration.residualNorm,   iteration.relativeResidual,
+      iteration.energy, iteration.relativeEnergy, iteration.wallSeconds};
+  appendRow(state_->ref(), state_->convergence.get(), layout::kConvergence,
+            state_->convergenceType.get(), &row);
+}
+
+void ResultsWriter::appendCutback(const CutbackRecord& cutback) {
+  if (!state_) throw std::logic_error("ResultsWriter::appendCutback: no file is open");
+  h5::QuietErrors quiet;
+  const layout::CutbackRow row{cutback.step, cutback.time, cutback.newDt, cutback.reason.c_str()};
+  appendRow(state_->ref(), state_->cutbacks.get(), layout::kCutbacks, state_->cutbackType.get(),
+            &row);
+}
+
+void ResultsWriter::close(const RunTotals& totals) {
+  if (!state_) throw std::logic_error("ResultsWriter::close: no file is open");
+  h5::QuietErrors quiet;
+  std::unique_ptr<State> state = std::move(state_);
+  const h5::FileRef file = state->ref();
+  {
+    h5::Group summary = h5::createGroup(file, file.id, "summary");
+    h5::writeAttribute(file, summary.get(), "outcome", totals.outcome);
+    h5::writeAttribute(file, summary.get(), "steps", totals.steps);
+    h5::writeAttribute(file, summary.get(), "total_iterations", totals.totalIterations);
+    h5::writeAttribute(file, summary.get(), "cutbacks", totals.cutbacks);
+    h5::writeAttribute(file, summary.get(), "wall_seconds", totals.wallSeconds);
+    h5::writeAttribute(file, summary.get(), "message", totals.message);
+  }
+  state->convergence.reset();
+  state->cutbacks.reset();
+  state->steps.reset();
+  h5::checkStatus(state->file.close(), state->path, "closing the file");
+}
+
+}  // namespace cc

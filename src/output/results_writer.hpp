@@ -1,0 +1,81 @@
+// ResultsWriter: one HDF5 file per run (deck, mesh, one group per converged step, convergence and
+// cut-back tables, summary) plus the XDMF and reactions-CSV sidecars. Layout:
+// docs/output-format.md. Every step is flushed, so a run killed at any moment keeps all finished
+// steps readable.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "mesh/mesh.hpp"
+#include "output/hdf5_io.hpp"
+#include "output/results.hpp"
+
+namespace cc {
+
+// Where the results came from; stored as attributes of the file's root group.
+struct RunInfo {
+  std::string deckText;
+  std::string commandLine;
+  std::string title;
+  std::string version;
+  std::string deckPath;
+};
+
+// Which fields and sidecars to write (the app fills it from the deck's `output` block).
+struct OutputSelection {
+  bool displacement = true;
+  bool reaction = true;
+  bool stress = false;
+  bool contact = true;
+  bool csv = true;   // <stem>_reactions.csv
+  bool xdmf = true;  // <stem>.xdmf
+};
+
+// How the run ended; stored as attributes of /summary by close().
+struct RunTotals {
+  std::string outcome;  // e.g. "completed", "diverged", "interrupted"
+  int steps = 0;
+  int totalIterations = 0;
+  int cutbacks = 0;
+  double wallSeconds = 0;
+  std::string message;
+};
+
+// <dir>/<stem>.xdmf and <dir>/<stem>_reactions.csv beside <dir>/<stem>.h5.
+std::string xdmfPathFor(const std::string& h5Path);
+std::string csvPathFor(const std::string& h5Path);
+
+// Throws OutputError naming the path if the results file or a selected sidecar cannot be created
+// or overwritten. Cheap and side-effect free, so the app can call it before meshing and solving.
+void checkOutputWritable(const std::string& h5Path, const OutputSelection& selection = {});
+
+class ResultsWriter {
+ public:
+  ResultsWriter();
+  ~ResultsWriter();  // closes without a /summary if close() was not called; never throws
+  ResultsWriter(const ResultsWriter&) = delete;
+  ResultsWriter& operator=(const ResultsWriter&) = delete;
+
+  // Creates (truncates) the files and writes the run info and the mesh. Throws OutputError.
+  void open(const std::string& path, const RunInfo& info, const Mesh& mesh,
+            const OutputSelection& selection = {});
+  // Writes /steps/<6-digit step>, flushes the file, then appends the step to the sidecars.
+  // Throws std::invalid_argument if a selected field is missing or has the wrong size.
+  void writeStep(const StepRecord& step);
+  void appendIteration(const IterationRecord& iteration);
+  void appendCutback(const CutbackRecord& cutback);
+  // Writes /summary and closes every file; the writer can then be opened again.
+  void close(const RunTotals& totals);
+
+  bool isOpen() const;
+  const std::string& path() const;
+
+ private:
+  struct State;
+  void writeStepGroup(const StepRecord& step, hid_t group);
+  void writeContact(const StepRecord& step, hid_t stepGroup);
+  std::unique_ptr<State> state_;
+};
+
+}  // namespace cc
