@@ -161,11 +161,10 @@ Eigen::Vector3d ContactPair::slavePosition(const Point& point, const Eigen::Matr
   return position;
 }
 
-void ContactPair::searchSegments(const AssemblyState& state) {
-  const Eigen::Matrix3Xd& x = *state.current;
-  if (gridTime_ != state.time) {
+void ContactPair::searchSegments(const Eigen::Matrix3Xd& x, double time) {
+  if (gridTime_ != time) {
     master_.buildSearchGrid(x, master_.typicalSegmentSize());
-    gridTime_ = state.time;
+    gridTime_ = time;
   }
   bool changed = false;
   for (Point& point : points_) {
@@ -183,7 +182,34 @@ void ContactPair::searchSegments(const AssemblyState& state) {
   if (changed) ++topologyVersion_;
 }
 
+void ContactPair::initializeHistory(const AssemblyState& state) {
+  const Eigen::Matrix3Xd& x = *state.previous;
+  if (config_.kind == PointKind::SegmentToAnalytical) {
+    const Eigen::Vector3d offset = motion_ ? motion_(state.previousTime) : Eigen::Vector3d::Zero();
+    for (Point& point : points_) {
+      const NodeMatrix<double> nodes = master_.segmentNodes(point.fixedSegment, x);
+      const SurfaceShape<double> shape =
+          surfaceShape(master_.type(), point.gaussPoint[0], point.gaussPoint[1]);
+      point.committed.masterPoint.setZero();
+      for (int k = 0; k < shape.count; ++k) point.committed.masterPoint += shape.value[k] * nodes.col(k);
+      point.committed.surfaceOffset = offset;
+      point.committed.projected = true;
+    }
+  } else {
+    searchSegments(x, state.previousTime);
+    for (Point& point : points_) {
+      point.committed.projected = point.segment >= 0;
+      point.committed.segment = point.segment;
+      point.committed.xi = point.xi;
+    }
+  }
+  for (Point& point : points_) buildItem(point);
+  ++topologyVersion_;
+  historyInitialized_ = true;
+}
+
 LocalStatus ContactPair::prepare(const AssemblyState& state) {
+  if (!historyInitialized_) initializeHistory(state);
   if (config_.kind == PointKind::SegmentToAnalytical) {
     surfaceOffset_ = motion_ ? motion_(state.time) : Eigen::Vector3d::Zero();
     if (!surfaceOffset_.allFinite()) {
@@ -193,7 +219,7 @@ LocalStatus ContactPair::prepare(const AssemblyState& state) {
     }
     return LocalStatus::success();
   }
-  searchSegments(state);
+  searchSegments(*state.current, state.time);
   return LocalStatus::success();
 }
 

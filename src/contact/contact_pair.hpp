@@ -100,7 +100,9 @@ class ContactPair : public Contribution {
   ContactPair(ContactPairConfig config, const FaceSet& master);
   void buildItem(Point& point) const;
   Eigen::Vector3d slavePosition(const Point& point, const Eigen::Matrix3Xd& x) const;
-  void searchSegments(const AssemblyState& state);
+  void searchSegments(const Eigen::Matrix3Xd& x, double time);
+  // Table 1, step 1: the projections in the initial configuration start the history.
+  void initializeHistory(const AssemblyState& state);
   PointSetup setupFor(const Point& point) const;
   static void storeTrial(Point& point, const PointEvaluation& evaluation, const LawParameters& law);
 
@@ -114,6 +116,7 @@ class ContactPair : public Contribution {
   Eigen::Vector3d surfaceOffset_ = Eigen::Vector3d::Zero();
   // The search grid is rebuilt once per step attempt (the master moves between steps).
   double gridTime_ = -1;
+  bool historyInitialized_ = false;
 };
 
 }  // namespace cc::contact

@@ -55,6 +55,8 @@ struct PointKinematics {
   Vec3<Scalar> slavePoint;               // r_s
   Scalar gap;                            // g, eq. (27) (STAS: xi^3 of eq. (117))
   Vec3<Scalar> slip;                     // Delta rho, eq. (47) or -u of eq. (48)
+  Vec3<Scalar> convectedTraction;        // T^(n) carried with the master surface (see
+                                         // TangentialIntegration::ConvectedTranslation)
   Scalar weight;                         // ds times the quadrature weight
 };
 
@@ -78,14 +80,28 @@ PointResponse<Scalar> pointResponse(const PointKinematics<Scalar>& kin,
   response.tangential.trialCovariant.setZero();
   response.tangential.trialNorm = Scalar(0.0);
   response.tangential.vector.setZero();
-  if (law.friction > 0) {
+  // Friction needs the projection of the last converged step (eq. (47)/(48)); a point that had
+  // none (it came onto the master surface during this step) carries only normal traction in
+  // this step, consistently in residual and tangent.
+  if (law.friction > 0 && history.projected) {
     response.frictional = true;
-    const auto trial =
-        law.integration == TangentialIntegration::ParallelTranslation
-            ? trialTraction(kin.frame, history.traction, kin.slip, law.penaltyTangential)
-            : convectiveTrialTraction(kin.frame, history.tractionCovariant, kin.xi, history.xi,
-                                      law.penaltyTangential);
-    response.tangential = returnMapping(kin.frame, trial, response.normal, law.friction);
+    Eigen::Matrix<Scalar, 2, 1> trial;
+    switch (law.integration) {
+      case TangentialIntegration::ParallelTranslation:
+        trial = trialTraction(kin.frame, Vec3<Scalar>(history.traction.cast<Scalar>()), kin.slip,
+                              law.penaltyTangential);
+        break;
+      case TangentialIntegration::ConvectedTranslation:
+        trial = trialTraction(kin.frame, kin.convectedTraction, kin.slip, law.penaltyTangential);
+        break;
+      case TangentialIntegration::Convective:
+        trial = convectiveTrialTraction(kin.frame, history.tractionCovariant, kin.xi, history.xi,
+                                        law.penaltyTangential);
+        break;
+    }
+    response.tangential =
+        returnMapping(kin.frame, trial, response.normal, law.friction, law.penaltyTangential,
+                      history.state == PointState::Slip);
     response.state = response.tangential.state;
   }
   return response;

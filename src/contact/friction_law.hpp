@@ -16,6 +16,8 @@ enum class PointState { Open = 0, Stick = 1, Slip = 2 };
 // How the trial traction carries the last converged traction into the current step.
 enum class TangentialIntegration {
   ParallelTranslation,  // eqs. (51), (77): continuous across segment boundaries (the default)
+  ConvectedTranslation,  // T_i^(n) convected with the master surface to the old material point,
+                         // then translated in parallel to the new projection point
   Convective,           // eq. (75): covariant components kept as numbers; jumps across
                         // segments with differing parametrizations (for comparison only)
 };
@@ -24,7 +26,7 @@ struct LawParameters {
   double penaltyNormal = 0;      // eps_N
   double penaltyTangential = 0;  // eps_T
   double friction = 0;           // mu
-  TangentialIntegration integration = TangentialIntegration::ParallelTranslation;
+  TangentialIntegration integration = TangentialIntegration::ConvectedTranslation;
 };
 
 // Eqs. (62)-(63): N = eps_N <g>, Macaulay bracket <g> = g for g <= 0, 0 otherwise. N <= 0.
@@ -49,11 +51,11 @@ struct TangentialTraction {
 // Delta rho = -u of eq. (48) (STAS).
 template <class Scalar>
 Eigen::Matrix<Scalar, 2, 1> trialTraction(const SurfaceFrame<Scalar>& frame,
-                                          const Eigen::Vector3d& previousTraction,
+                                          const Vec3<Scalar>& previousTraction,
                                           const Vec3<Scalar>& slip, double penaltyTangential) {
   Eigen::Matrix<Scalar, 2, 1> trial;
   for (int i = 0; i < 2; ++i) {
-    trial[i] = frame.rhoCov[i].dot(previousTraction.cast<Scalar>()) -
+    trial[i] = frame.rhoCov[i].dot(previousTraction) -
                penaltyTangential * slip.dot(frame.rhoCov[i]);
   }
   return trial;
@@ -79,18 +81,36 @@ Scalar tractionNorm(const Eigen::Matrix<Scalar, 2, 1>& covariant,
   return sqrt(covariant.dot(inverseMetric * covariant));
 }
 
+// Slip, relative to the segment size, below which a trial traction counts as stick.
+constexpr double kNegligibleSlip = 1e-12;
+// Relative width of the band |Phi^tr| <= tol mu |N| in which a trial traction counts as lying on
+// the Coulomb cone.
+constexpr double kConeTolerance = 1e-9;
+
 // Return mapping, eq. (79): stick if Phi^tr = ||T^tr|| - mu |N| <= 0, otherwise the trial
-// traction is scaled back onto the Coulomb cone.
+// traction is scaled back onto the Coulomb cone. On the cone itself (the start of a step after a
+// sliding step: the translated traction has exactly the magnitude mu |N|) both branches give the
+// same traction; a point that was sliding is then kept sliding, so that the first Newton
+// iteration of a sliding step uses the slide tangent instead of the stiff stick one.
 template <class Scalar>
 TangentialTraction<Scalar> returnMapping(const SurfaceFrame<Scalar>& frame,
                                          const Eigen::Matrix<Scalar, 2, 1>& trial,
-                                         const Scalar& normal, double friction) {
+                                         const Scalar& normal, double friction,
+                                         double penaltyTangential, bool wasSliding) {
   using std::abs;
+  using std::sqrt;
   TangentialTraction<Scalar> result;
   result.trialCovariant = trial;
   result.trialNorm = tractionNorm(trial, frame.inverseMetric);
   const Scalar limit = friction * abs(normal);
-  if (result.trialNorm <= limit) {
+  // A trial traction from a slip at round-off level of the coordinates is no slip: without this
+  // tolerance a point touching with N = 0 (g = 0 at the start) would slide on noise in a random
+  // direction and carry no tangential stiffness into the first Newton iteration.
+  const double slack = penaltyTangential * kNegligibleSlip * sqrt(scalarValue(frame.metric(0, 0))) +
+                       kConeTolerance * scalarValue(limit);
+  const double excess = scalarValue(result.trialNorm) - scalarValue(limit);
+  const bool slides = excess > slack || (wasSliding && excess >= -slack && scalarValue(limit) > 0);
+  if (!slides) {
     result.state = PointState::Stick;
     result.covariant = trial;
   } else {

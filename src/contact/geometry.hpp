@@ -22,6 +22,14 @@ using Mat2 = Eigen::Matrix<Scalar, 2, 2>;
 template <class Scalar>
 using NodeMatrix = Eigen::Matrix<Scalar, 3, Eigen::Dynamic>;
 
+// The plain value of a scalar (double, or an automatic-differentiation scalar's value), for
+// decisions that must not depend on derivatives.
+inline double scalarValue(double x) { return x; }
+template <class Scalar>
+double scalarValue(const Scalar& x) {
+  return x.value();
+}
+
 // Index of the symmetric second derivative rho_ij in SurfaceFrame::rhoSecond: 11 -> 0, 12 -> 1,
 // 22 -> 2.
 constexpr int symmetricIndex(int i, int j) { return i + j; }

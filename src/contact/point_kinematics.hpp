@@ -45,14 +45,15 @@ void setMasterFrame(PointKinematics<Scalar>& kin, const NodeMatrix<Scalar>& mast
   for (int k = 0; k < shape.count; ++k) kin.masterShape[k] = shape.value[k];
 }
 
-// Eq. (47): Delta rho = rho(xi_(n+1)) - rho(xi_(n)) where the master material point of the last
-// projection is taken with the current coordinates (rho_C(n) + u_C(n)), on its own segment.
+// The master material point of the last converged projection, taken with the current
+// coordinates on its own segment: rho_C(n) + u_C(n) of eq. (47), and there the traction of the
+// last converged step carried along with the master surface (its covariant components T_i^(n)
+// kept, the contravariant basis rho^i current): the pull-back to the reference configuration and
+// push-forward to the current one that section 2.3.2 describes.
 template <class Scalar>
-Vec3<Scalar> slipSincePreviousProjection(const NodeMatrix<Scalar>& itemNodes,
-                                         const PointLayout& layout,
-                                         const NodeMatrix<Scalar>& masterNodes,
-                                         const PointHistory& history, const Vec3<Scalar>& rho) {
-  if (!history.projected) return Vec3<Scalar>::Zero();
+void previousMaterialPoint(const NodeMatrix<Scalar>& itemNodes, const PointLayout& layout,
+                           const NodeMatrix<Scalar>& masterNodes, const PointHistory& history,
+                           Vec3<Scalar>& point, Vec3<Scalar>& convectedTraction) {
   const bool sameSegment = layout.previousMasterCount == 0;
   const SegmentType type = sameSegment ? layout.masterType : layout.previousMasterType;
   const NodeMatrix<Scalar> previousNodes =
@@ -60,9 +61,15 @@ Vec3<Scalar> slipSincePreviousProjection(const NodeMatrix<Scalar>& itemNodes,
                   : gatherNodes(itemNodes, layout.previousMasterLocal, layout.previousMasterCount);
   const SurfaceShape<Scalar> shape =
       surfaceShape(type, Scalar(history.xi[0]), Scalar(history.xi[1]));
-  Vec3<Scalar> previousPoint = Vec3<Scalar>::Zero();
-  for (int k = 0; k < shape.count; ++k) previousPoint += shape.value[k] * previousNodes.col(k);
-  return rho - previousPoint;
+  std::array<Vec3<Scalar>, 2> tangents;
+  interpolateSurface(previousNodes, shape, point, tangents, nullptr);
+  const Mat2<Scalar> inverseMetric = contravariantMetric(covariantMetric(tangents));
+  convectedTraction.setZero();
+  for (int i = 0; i < 2; ++i) {
+    for (int j = 0; j < 2; ++j) {
+      convectedTraction += history.tractionCovariant[i] * inverseMetric(i, j) * tangents[j];
+    }
+  }
 }
 
 }  // namespace detail
@@ -87,8 +94,14 @@ PointKinematics<Scalar> projectedPointKinematics(const NodeMatrix<Scalar>& itemN
   detail::setMasterFrame(kin, masterNodes, layout.masterType, parameter[0], parameter[1]);
   kin.xi = parameter;
   kin.gap = (kin.slavePoint - kin.frame.rho).dot(kin.frame.normal);
-  kin.slip =
-      detail::slipSincePreviousProjection(itemNodes, layout, masterNodes, history, kin.frame.rho);
+  kin.slip.setZero();
+  kin.convectedTraction.setZero();
+  if (history.projected) {
+    Vec3<Scalar> previousPoint;
+    detail::previousMaterialPoint(itemNodes, layout, masterNodes, history, previousPoint,
+                                  kin.convectedTraction);
+    kin.slip = kin.frame.rho - previousPoint;  // eq. (47)
+  }
   if (layout.slaveCount == 1) {
     kin.weight = Scalar(slave.nodalArea);
   } else if (slave.frozenAreaElement) {
@@ -127,12 +140,15 @@ std::optional<PointKinematics<Scalar>> analyticalSurfaceKinematics(
   kin.gap = *gap;
   kin.slavePoint = kin.frame.rho + kin.gap * kin.frame.normal;
   kin.weight = kin.frame.areaElement * gaussWeight;
+  kin.slip.setZero();
+  kin.convectedTraction.setZero();
   if (history.projected) {
     const Vec3<Scalar> relativeMotion = kin.frame.rho - history.masterPoint.cast<Scalar>() -
                                         (surfaceOffset - history.surfaceOffset).cast<Scalar>();
     kin.slip = -relativeMotion;
-  } else {
-    kin.slip.setZero();
+    // The Gauss point is the master material point itself: T_i^(n) rho^i(current).
+    kin.convectedTraction = history.tractionCovariant[0] * kin.frame.rhoContra[0] +
+                            history.tractionCovariant[1] * kin.frame.rhoContra[1];
   }
   return kin;
 }

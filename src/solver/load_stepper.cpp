@@ -27,6 +27,7 @@ struct LoadStepper::StepControl {
   double fraction = 1;  // step size in units of the phase's dt
   int easySteps = 0;    // consecutive converged steps with few iterations
   int cutbacks = 0;     // cut-backs of the step being attempted
+  int attempts = 0;     // Newton attempts of the step being attempted (cut-backs and retries)
   int convergedInPhase = 0;
   bool singularAtStart = false;  // the last attempt was singular in its first iteration
 };
@@ -99,8 +100,22 @@ bool LoadStepper::runPhase(const PhaseSpec& phase, double phaseStart, PhaseRun& 
   while (position < phase.steps) {
     const double target = snapped(std::min(position + control.fraction, std::floor(position) + 1));
     const double targetTime = phaseStart + target * phase.dt;
-    const NewtonStep step{run.step + 1, control.cutbacks, targetTime, run.time};
-    const NewtonResult result = newton_->solve(step, phase.newton, run.displacement);
+    const NewtonStep step{run.step + 1, control.attempts++, targetTime, run.time};
+    NewtonResult result = newton_->solve(step, phase.newton, run.displacement);
+    if (result.status == NewtonResult::Status::Failed &&
+        result.failure == FailureKind::Diverged && !phase.newton.lineSearch) {
+      // Newton on the non-smooth stick/slip law can cycle between states without any step size
+      // helping (penalty contact is scale-free in the increment); a line search usually breaks
+      // the cycle, so it is tried on the same step before the step is cut back.
+      problem_.restoreStep();
+      run.displacement = run.converged;
+      observer_.cutback({step.step, step.time, (target - position) * phase.dt,
+                         "retrying the step with line search: " + result.message});
+      NewtonSpec withLineSearch = phase.newton;
+      withLineSearch.lineSearch = true;
+      const NewtonStep retry{run.step + 1, control.attempts++, targetTime, run.time};
+      result = newton_->solve(retry, withLineSearch, run.displacement);
+    }
     if (result.status == NewtonResult::Status::Converged) {
       position = target;
       if (!acceptStep(phase, result, targetTime, position >= phase.steps, control, run)) {
@@ -133,6 +148,7 @@ bool LoadStepper::acceptStep(const PhaseSpec& phase, const NewtonResult& result,
     control.easySteps = 0;
   }
   control.cutbacks = 0;
+  control.attempts = 0;
   control.singularAtStart = false;
   if (!observer_.stopRequested()) return true;
   summary_.outcome = RunSummary::Outcome::Interrupted;

@@ -182,7 +182,17 @@ NewtonResult Newton::solve(const NewtonStep& step, const NewtonSpec& spec,
     observer_.iteration({step.step, step.attempt, iteration, step.time, norms.residual,
                          norms.relativeResidual(), norms.energy, norms.relativeEnergy(),
                          secondsSince(runStart_)});
-    if (atRoundoff || convergedAfterSolve(spec, norms, iteration)) return converged(iteration);
+    if (atRoundoff || convergedAfterSolve(spec, norms, iteration)) {
+      // Evaluate once more at the converged displacement, so that the internal force (the
+      // reactions) and every contribution's trial state (the contact history to be committed)
+      // belong to the state the step ends in, not to the one before the last update.
+      try {
+        assembleAt(displacement, step, false);
+      } catch (const StepFailure& failure) {
+        return failed(iteration, failure.kind(), failure.what());
+      }
+      return converged(iteration);
+    }
     if (observer_.stopRequested()) {
       return {NewtonResult::Status::Interrupted, iteration, FailureKind::Diverged, "interrupted"};
     }

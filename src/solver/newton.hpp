@@ -42,7 +42,7 @@ inline constexpr int kLineSearchHalvings = 4;
 
 struct NewtonStep {
   int step = 0;             // number the step gets if it converges (1-based)
-  int attempt = 0;          // cut-backs of this step so far
+  int attempt = 0;          // earlier attempts of this step (cut-backs, line-search retries)
   double time = 0;          // t_{n+1}
   double previousTime = 0;  // t_n
 };
@@ -76,8 +76,8 @@ class Newton {
   // restores it and calls problem.restoreStep()).
   NewtonResult solve(const NewtonStep& step, const NewtonSpec& spec, Eigen::VectorXd& displacement);
 
-  // Internal force of the last assembly. When a step converges after a solve (energy tests),
-  // that assembly precedes the last, negligible update, as FEAP's reactions do.
+  // Internal force of the last assembly. A converged step always ends with an assembly (force
+  // only) at its final displacement, so this is the internal force of the converged state.
   const Eigen::VectorXd& internalForce() const { return internalForce_; }
   int assemblies() const { return assemblies_; }
   double assemblySeconds() const { return assemblySeconds_; }
