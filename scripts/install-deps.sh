@@ -7,6 +7,7 @@ packages=(
   build-essential cmake ninja-build pkg-config git
   libeigen3-dev libsuitesparse-dev libhdf5-dev libgmsh-dev gmsh
   libmuparser-dev libcli11-dev libfmt-dev libgtest-dev libgmock-dev
+  libopenblas0-serial
   python3-h5py python3-matplotlib python3-numpy
   paraview xvfb hdf5-tools
 )

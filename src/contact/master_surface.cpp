@@ -14,6 +14,11 @@ namespace {
 constexpr int kMaxWalkHops = 64;
 // Parameter tolerance for "inside the segment": points on an edge or vertex belong to both.
 constexpr double kInsideTolerance = 1e-10;
+// Beyond a free edge of the master surface (an edge without a neighbour) a projection still
+// counts up to this distance in parameter space (1% of the half segment): a slave node lying on
+// the master's boundary edge, common where both bodies end in the same plane, must not drop out
+// of contact whenever it moves by round-off or by a Poisson contraction across the edge.
+constexpr double kFreeEdgeTolerance = 1e-2;
 
 // Corners of edge e in the Quad4/Quad9 numbering: (0,1), (1,2), (2,3), (3,0).
 std::pair<int, int> edgeCorners(int edge) { return {edge, (edge + 1) % 4}; }
@@ -32,6 +37,16 @@ std::vector<int> violatedEdges(const Eigen::Vector2d& xi) {
 }
 
 }  // namespace
+
+bool MasterSurface::accepts(int segment, const Eigen::Vector2d& xi) const {
+  for (int edge : violatedEdges(xi)) {
+    const double excess = edge == 0 ? -1 - xi[1] : edge == 1 ? xi[0] - 1 : edge == 2 ? xi[1] - 1
+                                                                               : -1 - xi[0];
+    if (excess <= kInsideTolerance) continue;
+    if (neighbour(segment, edge) >= 0 || excess > kFreeEdgeTolerance) return false;
+  }
+  return true;
+}
 
 MasterSurface::MasterSurface(const FaceSet& faces)
     : type_(faces.type == CellType::Quad9 ? SegmentType::Quad9 : SegmentType::Quad4),
@@ -107,7 +122,7 @@ SegmentProjection MasterSurface::walk(int start, const Eigen::Vector2d& guess,
     const ProjectionResult p =
         closestPointProjection(type_, segmentNodes(segment, coordinates), point, initial);
     if (!p.converged) return {};
-    if (p.inside(kInsideTolerance)) {
+    if (accepts(segment, p.xi)) {
       const SurfaceShape<double> shape = surfaceShape(type_, p.xi[0], p.xi[1]);
       Eigen::Vector3d rho = Eigen::Vector3d::Zero();
       for (int k = 0; k < shape.count; ++k) rho += shape.value[k] * coordinates.col(node(segment, k));
@@ -135,7 +150,7 @@ SegmentProjection MasterSurface::search(const Eigen::Vector3d& point,
   for (int segment : cell->second) {
     const ProjectionResult p = closestPointProjection(
         type_, segmentNodes(segment, coordinates), point, Eigen::Vector2d::Zero());
-    if (!p.converged || !p.inside(kInsideTolerance)) continue;
+    if (!p.converged || !accepts(segment, p.xi)) continue;
     const SurfaceShape<double> shape = surfaceShape(type_, p.xi[0], p.xi[1]);
     Eigen::Vector3d rho = Eigen::Vector3d::Zero();
     for (int k = 0; k < shape.count; ++k) rho += shape.value[k] * coordinates.col(node(segment, k));

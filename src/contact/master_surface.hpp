@@ -49,6 +49,9 @@ class MasterSurface {
   double typicalSegmentSize() const { return typicalSize_; }
 
  private:
+  // Whether a projection parameter lies on the segment, or just beyond a free surface edge.
+  bool accepts(int segment, const Eigen::Vector2d& xi) const;
+
   using CellKey = long long;
   CellKey cellKey(const Eigen::Vector3i& cell) const;
   Eigen::Vector3i cellOf(const Eigen::Vector3d& point) const;
