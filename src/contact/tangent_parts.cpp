@@ -1,6 +1,8 @@
 // The parts of the paper's contact tangent (Tables 1 and 2), assembled from A^T u vectors.
 #include "contact/tangent_parts.hpp"
 
+#include <cmath>
+
 namespace cc::contact {
 
 namespace {
@@ -30,6 +32,10 @@ VectorXd derivativeTranspose(const SurfaceShape<double>& shape, const PointLayou
   }
   return v;
 }
+
+// Relative size of h_ij (against the segment size) and Gamma^k_ij below which a master segment
+// counts as flat, resp. as parametrized without connection terms.
+constexpr double kFlatTolerance = 1e-12;
 
 // K += scale (a b^T + b a^T)
 void addSymmetricPair(MatrixXd& K, double scale, const VectorXd& a, const VectorXd& b) {
@@ -151,21 +157,27 @@ void paperTangent(const PointKinematics<double>& kin, const PointResponse<double
   K.setZero(3 * layout.nodeCount, 3 * layout.nodeCount);
   if (response.state == PointState::Open) return;
   const TangentContext c = makeTangentContext(kin, layout, xi);
+  // Flat masters pay nothing for the curvature parts (h_ij = 0 up to round-off), and
+  // parallelogram segments nothing for the Christoffel part of (107e).
+  const double scale = kin.frame.metric.norm();
+  const bool curved = kin.frame.curvature.norm() > kFlatTolerance * std::sqrt(scale);
+  const bool connected = curved || kin.frame.christoffel[0].norm() + kin.frame.christoffel[1].norm() >
+                                       kFlatTolerance;
   if (parts.normalMain) normalMain(c, law.penaltyNormal, K);
   if (parts.normalRotational) normalRotational(c, law.penaltyNormal, kin.gap, K);
-  if (parts.normalCurvature) normalCurvature(c, law.penaltyNormal, kin.gap, K);
+  if (parts.normalCurvature && curved) normalCurvature(c, law.penaltyNormal, kin.gap, K);
   if (!response.frictional) return;
   const Eigen::Vector2d& traction = response.tangential.covariant;
   if (response.state == PointState::Stick) {
     if (parts.stickMain) stickMain(c, law.penaltyTangential, K);
     if (parts.stickRotational) tractionRotational(c, traction, K);
-    if (parts.stickCurvature) tractionCurvature(c, traction, K);
+    if (parts.stickCurvature && curved) tractionCurvature(c, traction, K);
     return;
   }
   if (parts.slideConstitutive) slideConstitutive(c, law, response.normal, response.tangential, K);
   if (parts.slideRotational) tractionRotational(c, traction, K);
-  if (parts.slideCurvature) tractionCurvature(c, traction, K);
-  if (parts.slideUnsymmetricCurvature) {
+  if (parts.slideCurvature && curved) tractionCurvature(c, traction, K);
+  if (parts.slideUnsymmetricCurvature && connected) {
     slideUnsymmetricCurvature(c, law, response.normal, response.tangential, K);
   }
 }
