@@ -1,7 +1,7 @@
-// ResultsWriter: one HDF5 file per run (deck, mesh, one group per converged step, convergence and
-// cut-back tables, summary) plus the XDMF and reactions-CSV sidecars. Layout:
-// docs/output-format.md. Every step is flushed, so a run killed at any moment keeps all finished
-// steps readable.
+// ResultsWriter: one HDF5 file per run (deck, mesh, one group per written step, convergence and
+// cut-back tables, summary) plus the XDMF and reactions-CSV sidecars (docs/output-format.md).
+// Every step is flushed, so a run killed while solving keeps all finished steps readable; a kill
+// inside writeStep's own flush can damage the file (HDF5 cannot flush atomically; measured there).
 #pragma once
 
 #include <memory>

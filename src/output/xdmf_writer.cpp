@@ -69,12 +69,14 @@ constexpr const char* kAttributeClose = "          </Attribute>\n";
 }  // namespace
 
 XdmfWriter::XdmfWriter(std::string xdmfPath, std::string h5FileName, long numNodes,
-                       long numElements, std::vector<XdmfBlock> blocks)
+                       long numElements, std::vector<XdmfBlock> blocks, size_t atomicRewriteLimit)
     : path_(std::move(xdmfPath)),
       h5FileName_(std::move(h5FileName)),
       numNodes_(numNodes),
       numElements_(numElements),
-      blocks_(std::move(blocks)) {
+      blocks_(std::move(blocks)),
+      atomicRewriteLimit_(atomicRewriteLimit),
+      footerOffset_(std::strlen(kHeader)) {
   replaceFile();
 }
 
@@ -86,8 +88,15 @@ void XdmfWriter::appendStep(const XdmfStep& step) {
     if (block.numElements > 0) grid += blockGrid(block, step);
   for (const auto& [pair, points] : step.contactPairs)
     if (points > 0) grid += contactGrid(pair, points, step);
-  steps_ += grid + "      </Grid>\n";
-  replaceFile();
+  grid += "      </Grid>\n";
+  if (footerOffset_ + grid.size() + std::strlen(kFooter) <= atomicRewriteLimit_) {
+    steps_ += grid;
+    replaceFile();
+  } else {
+    steps_.clear();  // no longer needed: the file itself holds the steps from now on
+    appendInPlace(grid);
+  }
+  footerOffset_ += grid.size();
 }
 
 std::string XdmfWriter::dataItem(const std::string& dims, const char* numberType, int precision,
@@ -165,6 +174,18 @@ std::string XdmfWriter::contactGrid(const std::string& pair, long points,
     grid += kAttributeClose;
   }
   return grid + "        </Grid>\n";
+}
+
+void XdmfWriter::appendInPlace(const std::string& grid) {
+  const std::string text = grid + kFooter;
+  const int fd = ::open(path_.c_str(), O_WRONLY | O_CLOEXEC);
+  if (fd < 0) throw OutputError("cannot open XDMF file '" + path_ + "': " + std::strerror(errno));
+  const ssize_t written = ::pwrite(fd, text.data(), text.size(), static_cast<off_t>(footerOffset_));
+  const int writeError = errno;
+  ::close(fd);
+  if (written != static_cast<ssize_t>(text.size()))
+    throw OutputError("cannot write XDMF file '" + path_ +
+                      "': " + (written < 0 ? std::strerror(writeError) : "short write"));
 }
 
 void XdmfWriter::replaceFile() const {
