@@ -7,6 +7,7 @@
 
 #include "output/results_reader.hpp"
 #include "output/results_writer.hpp"
+#include "output/xdmf_writer.hpp"
 #include "synthetic_run.hpp"
 
 namespace cc::test {
@@ -158,6 +159,23 @@ TEST_F(Writer, FileLeftWithoutCloseKeepsItsSteps) {
   ASSERT_EQ(reader.steps().size(), 2u);
   EXPECT_EQ(reader.steps()[1].step, 2);
   EXPECT_FALSE(reader.hasGroup("/summary"));
+}
+
+TEST_F(Writer, XdmfAppendedInPlaceEqualsXdmfReplacedAtomically) {
+  const std::vector<XdmfBlock> blocks = {{"base", "Hexahedron", 4, 8, "/mesh/base", 0}};
+  const auto writeSteps = [&](const std::string& name, size_t atomicRewriteLimit) {
+    XdmfWriter xdmf(pathOf(name), "run.h5", 18, 4, blocks, atomicRewriteLimit);
+    for (int step = 1; step <= 3; ++step)
+      xdmf.appendStep({step, 0.5 * step, true, true, false, {{"pair1", 5}}});
+    std::ifstream file(pathOf(name));
+    return std::string((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  };
+  const std::string atomic = writeSteps("atomic.xdmf", kDefaultAtomicRewriteLimit);
+  constexpr size_t kOneStepFits = 3000;  // header, one step (about 2 KiB) and closing tags
+  const std::string inPlace = writeSteps("in_place.xdmf", kOneStepFits);
+  EXPECT_EQ(inPlace, atomic);
+  EXPECT_GT(atomic.size(), kOneStepFits);  // so steps 2 and 3 really were appended in place
+  EXPECT_FALSE(fs::exists(pathOf("atomic.xdmf.tmp")));
 }
 
 TEST_F(Writer, ReaderRejectsMissingAndForeignFiles) {
