@@ -90,23 +90,23 @@ void Newton::addToFree(Eigen::VectorXd& displacement, const Eigen::VectorXd& du,
 
 double Newton::lineSearch(const NewtonStep& step, const Eigen::VectorXd& du,
                           const Eigen::VectorXd& rhs, Eigen::VectorXd& displacement) {
-  const double initialSlope = std::abs(du.dot(rhs));  // |du . R(u)|, R = -rhs
-  double bestFraction = 1, bestSlope = std::numeric_limits<double>::infinity();
+  const double initialResidual = rhs.norm();  // ||R(u)||, R = -rhs (linearized in iteration 1)
+  double bestFraction = 1, bestResidual = std::numeric_limits<double>::infinity();
   double fraction = 1, lastTried = 1;
   for (int halving = 0; halving <= kLineSearchHalvings; ++halving, fraction *= 0.5) {
     lastTried = fraction;
     Eigen::VectorXd trial = displacement;
     addToFree(trial, du, fraction);
-    double slope = std::numeric_limits<double>::infinity();
+    double residual = std::numeric_limits<double>::infinity();
     try {
       assembleAt(trial, step, false);
-      slope = std::abs(du.dot(freeResidual()));
+      residual = freeResidual().norm();
     } catch (const StepFailure&) {
       // an inverted element or a lost projection at this fraction: try a shorter step
     }
-    if (!std::isfinite(slope)) slope = std::numeric_limits<double>::infinity();
-    if (slope < bestSlope) bestSlope = slope, bestFraction = fraction;
-    if (slope <= kLineSearchRatio * initialSlope) break;
+    if (!std::isfinite(residual)) residual = std::numeric_limits<double>::infinity();
+    if (residual < bestResidual) bestResidual = residual, bestFraction = fraction;
+    if (residual <= (1 - kLineSearchDecrease * fraction) * initialResidual) break;
   }
   if (bestFraction != lastTried) {
     // Leave the contributions (and internalForce_) evaluated at the accepted point.
