@@ -25,9 +25,12 @@ namespace {
 // balance elements of very different cost (contact items next to empty ones).
 constexpr int kScheduleChunk = 16;
 
-// Contributions with fewer items run on one thread: thread start-up and one barrier per color
-// would cost more than evaluating a handful of contact points.
-constexpr std::size_t kMinItemsForThreads = 64;
+// Contributions with fewer items run on one thread. Threads pay one barrier per color; on a
+// machine whose cores are busy with other work a barrier can wait a whole time slice for a
+// descheduled thread (measured: the 500-element main example took 15 s on one thread and
+// 70-90 s on two on a loaded 2-core machine), so only contributions large enough for the
+// per-color work to dwarf that go parallel.
+constexpr std::size_t kDefaultMinItemsForThreads = 2048;
 
 // Pattern versions are unique in the process so that a solver keyed on a version never
 // confuses patterns of two assemblers.
@@ -134,6 +137,7 @@ struct Assembler::Impl {
   std::vector<TopologyKey> patternKeys;  // topologies the current pattern was built from
   std::uint64_t patternVersion = 0;
   std::vector<ThreadBuffers> threadBuffers;
+  std::size_t minItemsForThreads = kDefaultMinItemsForThreads;
 
   Impl(const DofMap& dofMap, std::vector<Contribution*> list)
       : dofs(dofMap), contributions(std::move(list)), states(contributions.size()) {}
@@ -236,7 +240,7 @@ void Assembler::Impl::evaluateContribution(std::size_t index, const AssemblyStat
   Contribution& contribution = *contributions[index];
   const ItemColoring& coloring = states[index].coloring;
   for (ThreadBuffers& buffers : threadBuffers) buffers.failure = ItemFailure{};
-#pragma omp parallel if (coloring.items.size() >= kMinItemsForThreads)
+#pragma omp parallel if (coloring.items.size() >= minItemsForThreads)
   {
     ThreadBuffers& buffers = threadBuffers[omp_get_thread_num()];
     for (std::size_t color = 0; color < coloring.numColors(); ++color) {
@@ -263,6 +267,8 @@ Assembler::Assembler(const DofMap& dofs, std::vector<Contribution*> contribution
     : impl_(std::make_unique<Impl>(dofs, std::move(contributions))) {}
 
 Assembler::~Assembler() = default;
+
+void Assembler::setMinItemsForThreads(std::size_t items) { impl_->minItemsForThreads = items; }
 
 int Assembler::threads() const {
   return omp_get_max_threads();

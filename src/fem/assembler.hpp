@@ -51,6 +51,8 @@ class Assembler {
 
   const AssemblyTimings& timings() const { return timings_; }
   int threads() const;
+  // Contributions with fewer items are evaluated on one thread (default 2048, see assembler.cpp).
+  void setMinItemsForThreads(std::size_t items);
 
  private:
   struct Impl;

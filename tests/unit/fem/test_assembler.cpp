@@ -53,6 +53,7 @@ Assembled assembleWithThreads(int threads, GridSprings& grid, const DofMap& dofs
   state.current = &current;
   state.previous = &reference;
   Assembler assembler(dofs, {&grid});
+  assembler.setMinItemsForThreads(1);  // the small grids below must exercise the threads
   EXPECT_EQ(assembler.threads(), threads);
   Assembled result;
   assembler.assemble(state, result.force, &result.matrices);
@@ -302,6 +303,7 @@ TEST(Assembler, ItemsOfMixedSizesOnFourThreadsEqualOneThread) {
   for (int run = 0; run < 2; ++run) {
     omp_set_num_threads(run == 0 ? 1 : 4);
     Assembler assembler(dofs, {&items});
+    assembler.setMinItemsForThreads(1);
     assembler.assemble(state, runs[run].force, &runs[run].matrices);
   }
   omp_set_num_threads(saved);
@@ -335,6 +337,7 @@ TEST(Assembler, OtherExceptionsFromItemsAreRethrownAfterTheParallelLoop) {
   ThrowingItems items;
   items.items = fixture.list.items;
   Assembler assembler(fixture.dofs, {&items});
+  assembler.setMinItemsForThreads(1);
   Eigen::VectorXd force;
   EXPECT_THROW(assembler.assemble(fixture.state, force, nullptr), std::logic_error);
 }
