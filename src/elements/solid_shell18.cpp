@@ -129,7 +129,7 @@ Scheme buildScheme(const SolidShellOptions& options) {
   } else {
     scheme.useCompatible(solidshell::k33);
   }
-  scheme.computeShapeGradients<shape::Hex18>();
+  scheme.finalize<shape::Hex18>();
   return scheme;
 }
 

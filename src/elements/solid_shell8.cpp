@@ -62,7 +62,7 @@ Scheme buildScheme(const SolidShellOptions& options) {
   } else {
     scheme.useCompatible(solidshell::k33);
   }
-  scheme.computeShapeGradients<shape::Hex8>();
+  scheme.finalize<shape::Hex8>();
   return scheme;
 }
 

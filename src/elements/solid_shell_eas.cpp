@@ -33,8 +33,11 @@ ElementStatus evaluateAt(std::span<EasGaussPoint> points, const Material& materi
     }
     if (n == 0) continue;
     system.residual.noalias() += point.enhancement.transpose() * (point.volume * point.stress);
-    system.stiffness.noalias() +=
-        point.enhancement.transpose() * (point.volume * point.materialTangent) * point.enhancement;
+    // lazyProduct: coefficient-wise products; the general (OpenMP-parallel) GEMM path of
+    // Eigen's dynamic-size products costs more than the arithmetic at these sizes.
+    const EasOperator weightedDG =
+        (point.volume * point.materialTangent).lazyProduct(point.enhancement);
+    system.stiffness.noalias() += point.enhancement.transpose().lazyProduct(weightedDG);
   }
   return {};
 }
@@ -62,14 +65,16 @@ ElementStatus localFailure(const std::string& why) {
 
 }  // namespace
 
-ElementStatus solveEnhancedStrains(std::span<EasGaussPoint> points, const Material& material,
-                                   EasVector& alpha, EasSystem& system) {
-  ElementStatus status = evaluateAt(points, material, alpha, system);
-  if (alpha.size() == 0) return status;
-  if (!status.ok()) {
-    alpha.setZero();
-    status = evaluateAt(points, material, alpha, system);
-    if (!status.ok()) return status;
+namespace {
+
+// Newton's method from alpha. A step is accepted when the material accepts the trial strains and
+// the local residual decreases (or the step is already below round-off); otherwise it is halved:
+// far from the solution (a poor warm start, nearly incompressible materials) the full step can
+// overshoot. `alpha` and `system` hold the last accepted state.
+ElementStatus newtonIteration(std::span<EasGaussPoint> points, const Material& material,
+                              EasVector& alpha, EasSystem& system) {
+  if (ElementStatus status = evaluateAt(points, material, alpha, system); !status.ok()) {
+    return status;
   }
   const double tolerance =
       kRelativeStrainTolerance * largestStrain(points) + kAbsoluteStrainTolerance;
@@ -80,15 +85,18 @@ ElementStatus solveEnhancedStrains(std::span<EasGaussPoint> points, const Materi
     const EasVector correction = -factorization.solve(system.residual);
     if (!correction.allFinite()) return localFailure("non-finite correction");
     lastChange = largestEnhancedStrainChange(points, correction);
+    const double residualNorm = system.residual.norm();
     double step = 1.0;
     for (int halving = 0;; ++halving) {
       const EasVector trial = alpha + step * correction;
-      if (evaluateAt(points, material, trial, system).ok()) {
+      const bool admissible = evaluateAt(points, material, trial, system).ok();
+      if (admissible && (system.residual.norm() < residualNorm || step * lastChange <= tolerance)) {
         alpha = trial;
         break;
       }
       if (halving == kMaxStepHalvings) {
-        return localFailure("every trial step left the material's domain");
+        evaluateAt(points, material, alpha, system);
+        return localFailure("no step along the Newton direction reduces the local residual");
       }
       step *= 0.5;
     }
@@ -98,6 +106,17 @@ ElementStatus solveEnhancedStrains(std::span<EasGaussPoint> points, const Materi
   message << "no convergence in " << kMaxLocalIterations
           << " iterations (last enhanced strain change " << lastChange << ")";
   return localFailure(message.str());
+}
+
+}  // namespace
+
+ElementStatus solveEnhancedStrains(std::span<EasGaussPoint> points, const Material& material,
+                                   EasVector& alpha, EasSystem& system) {
+  if (alpha.size() == 0) return evaluateAt(points, material, alpha, system);
+  const ElementStatus fromWarmStart = newtonIteration(points, material, alpha, system);
+  if (fromWarmStart.ok() || alpha.isZero(0.0)) return fromWarmStart;
+  alpha.setZero();  // the warm start may lie outside the law's domain or the convergence basin
+  return newtonIteration(points, material, alpha, system);
 }
 
 }  // namespace cc::solidshell

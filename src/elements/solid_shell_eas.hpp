@@ -26,8 +26,8 @@ struct EasSystem {
 };
 
 // Solves R_alpha(alpha) = 0 by Newton's method starting from `alpha` (the warm start; retried
-// from zero if the warm start lies outside the material's domain), with step halving when a
-// trial leaves that domain. On success every point holds S and D at the converged alpha and
+// from zero if that fails), halving steps that leave the material's domain or do not reduce
+// the local residual. On success every point holds S and D at the converged alpha and
 // `system` the local equations there; the last Newton correction is below round-off of the
 // strains, so the result does not depend on the warm start. With no parameters it only
 // evaluates the material. Fails with MaterialFailure or LocalIterationFailed.

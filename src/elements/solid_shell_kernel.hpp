@@ -26,6 +26,11 @@ class AssumedStrainKernel {
   using Vector = tl::ElementVector<N>;
   using Matrix = tl::ElementMatrix<N>;
   using Scheme = AssumedStrainScheme<N, NG>;
+  using Coupling = Eigen::Matrix<double, Eigen::Dynamic, 3 * N, 0, kMaxEasParameters, 3 * N>;
+  // Rows of strain-displacement matrices stored contiguously: the ANS interpolation combines
+  // single rows of many sampling points.
+  using StrainRow = Eigen::Matrix<double, 1, 3 * N>;
+  using RowMajorB = Eigen::Matrix<double, 6, 3 * N, Eigen::RowMajor>;
 
   AssumedStrainKernel(Scheme scheme, std::vector<EasMode> modes)
       : scheme_(std::move(scheme)), modes_(std::move(modes)) {}
@@ -36,14 +41,14 @@ class AssumedStrainKernel {
   // K = K_uu - K_ua K_aa^-1 K_au. alpha: warm start in, converged parameters out.
   ElementStatus evaluate(const Nodes& X, const Nodes& x, const Material& material, EasVector& alpha,
                          Vector& fint, Matrix* tangent) const {
-    auto state = std::make_unique<State>();
-    if (ElementStatus status = kinematics(X, x, *state); !status.ok()) return status;
+    State& state = workspace();
+    if (ElementStatus status = kinematics(X, x, state); !status.ok()) return status;
     EasSystem system;
-    if (ElementStatus status = solveEnhancedStrains(state->eas, material, alpha, system);
+    if (ElementStatus status = solveEnhancedStrains(state.eas, material, alpha, system);
         !status.ok()) {
       return status;
     }
-    assemble(*state, system, fint, tangent);
+    assemble(state, system, fint, tangent);
     if (!fint.allFinite()) return tl::notFinite("internal force");
     if (tangent != nullptr && !tangent->allFinite()) return tl::notFinite("tangent");
     return {};
@@ -52,17 +57,17 @@ class AssumedStrainKernel {
   // S at the Gauss points (converged EAS parameters) with their reference positions.
   ElementStatus gaussPointStresses(const Nodes& X, const Nodes& x, const Material& material,
                                    EasVector alpha, std::vector<GaussPointStress>& stresses) const {
-    auto state = std::make_unique<State>();
+    State& state = workspace();
     EasSystem system;
-    if (ElementStatus status = kinematics(X, x, *state); !status.ok()) return status;
-    if (ElementStatus status = solveEnhancedStrains(state->eas, material, alpha, system);
+    if (ElementStatus status = kinematics(X, x, state); !status.ok()) return status;
+    if (ElementStatus status = solveEnhancedStrains(state.eas, material, alpha, system);
         !status.ok()) {
       return status;
     }
     stresses.resize(NG);
     for (int g = 0; g < NG; ++g) {
       stresses[g].referencePosition = X * Shape::values(scheme_.gaussPoints[g]);
-      stresses[g].secondPiola = state->eas[g].stress;
+      stresses[g].secondPiola = state.eas[g].stress;
     }
     return {};
   }
@@ -72,31 +77,38 @@ class AssumedStrainKernel {
   Vector6d cauchyStress(const Nodes& X, const Nodes& x, const Material& material,
                         EasVector alpha) const {
     const Vector6d failed = Vector6d::Constant(std::numeric_limits<double>::quiet_NaN());
-    auto state = std::make_unique<State>();
+    State& state = workspace();
     EasSystem system;
-    if (!kinematics(X, x, *state).ok()) return failed;
-    if (!solveEnhancedStrains(state->eas, material, alpha, system).ok()) return failed;
+    if (!kinematics(X, x, state).ok()) return failed;
+    if (!solveEnhancedStrains(state.eas, material, alpha, system).ok()) return failed;
     Eigen::Matrix3d kirchhoffIntegral = Eigen::Matrix3d::Zero();
     double currentVolume = 0.0;
     for (int g = 0; g < NG; ++g) {
-      const Eigen::Matrix3d& F = state->deformationGradient[g];
-      const double volume = state->eas[g].volume;
-      kirchhoffIntegral += volume * tl::kirchhoffStress(F, stressFromVoigt(state->eas[g].stress));
+      const Eigen::Matrix3d& F = state.deformationGradient[g];
+      const double volume = state.eas[g].volume;
+      kirchhoffIntegral += volume * tl::kirchhoffStress(F, stressFromVoigt(state.eas[g].stress));
       currentVolume += volume * F.determinant();
     }
     return voigtFromStress(kirchhoffIntegral / currentVolume);
   }
 
  private:
-  // Everything the Gauss loop needs; heap-allocated once per call (the Hex18 arrays are large).
+  // Everything the Gauss loop needs. The Hex18 arrays are large (~300 kB), so each thread keeps
+  // one State per element type instead of allocating (and page-faulting) it on every call.
   struct State {
     std::vector<Vector6d> pointStrain;                     // covariant E at sampling points
-    std::vector<tl::StrainDisplacement<N>> pointB;         // covariant dE/dx there
+    std::vector<std::array<StrainRow, 6>> pointB;          // covariant dE_k/dx there
     std::array<tl::StrainDisplacement<N>, NG> cartesianB;  // dE/dx at the Gauss points
     std::array<Matrix6d, NG> toCartesian;                  // T_g: covariant -> Cartesian
     std::array<Eigen::Matrix3d, NG> deformationGradient;   // compatible F (output only)
     std::array<EasGaussPoint, NG> eas;
+    std::vector<Vector6d> pointStress;  // contravariant stress gathered per sampling point
   };
+
+  static State& workspace() {
+    thread_local State state;
+    return state;
+  }
 
   ElementStatus kinematics(const Nodes& X, const Nodes& x, State& state) const {
     if (!X.allFinite()) return tl::notFinite("reference coordinates");
@@ -112,9 +124,13 @@ class AssumedStrainKernel {
     state.pointB.resize(numPoints);
     for (std::size_t p = 0; p < numPoints; ++p) {
       const tl::ShapeGradients<N>& dNdxi = scheme_.samplingGradients[p];
+      const Eigen::Matrix3d referenceBasis = X * dNdxi;
       const Eigen::Matrix3d currentBasis = x * dNdxi;
-      state.pointStrain[p] = tl::covariantStrainVoigt(X * dNdxi, currentBasis);
-      tl::strainDisplacementMatrix<N>(currentBasis, dNdxi, state.pointB[p]);
+      for (int k = 0; k < 6; ++k) {
+        if (!scheme_.usedComponents[p][k]) continue;
+        state.pointStrain[p][k] =
+            covariantComponent<N>(k, referenceBasis, currentBasis, dNdxi, state.pointB[p][k]);
+      }
     }
 
     for (int g = 0; g < NG; ++g) {
@@ -127,23 +143,23 @@ class AssumedStrainKernel {
       const Eigen::Matrix3d inverseJacobian = jacobian.inverse();
 
       Vector6d covariantStrain = Vector6d::Zero();
-      tl::StrainDisplacement<N> covariantB = tl::StrainDisplacement<N>::Zero();
+      RowMajorB covariantB = RowMajorB::Zero();
       for (int k = 0; k < 6; ++k) {
         for (const InterpolationTerm& term : scheme_.terms[g][k]) {
           covariantStrain[k] += term.weight * state.pointStrain[term.point][k];
-          covariantB.row(k) += term.weight * state.pointB[term.point].row(k);
+          covariantB.row(k) += term.weight * state.pointB[term.point][k];
         }
       }
       state.toCartesian[g] = strainTransformation(inverseJacobian);
-      state.cartesianB[g].noalias() = state.toCartesian[g] * covariantB;
+      state.cartesianB[g].noalias() = state.toCartesian[g].lazyProduct(covariantB);
       state.deformationGradient[g] = currentBasis * inverseJacobian;
 
       EasGaussPoint& point = state.eas[g];
       point.compatibleStrain = state.toCartesian[g] * covariantStrain;
       point.volume = scheme_.gaussWeights[g] * detJ;
       // Simo-Rifai push-forward of the centre-frame modes: orthogonal to constant stresses.
-      point.enhancement =
-          (centreDet / detJ) * centreToCartesian * easModeMatrix(modes_, scheme_.gaussPoints[g]);
+      point.enhancement = ((centreDet / detJ) * centreToCartesian)
+                              .lazyProduct(easModeMatrix(modes_, scheme_.gaussPoints[g]));
     }
     return {};
   }
@@ -151,23 +167,27 @@ class AssumedStrainKernel {
   void assemble(const State& state, const EasSystem& system, Vector& fint, Matrix* tangent) const {
     fint.setZero();
     const int numAlpha = easParameters();
-    Eigen::Matrix<double, Eigen::Dynamic, 3 * N, 0, kMaxEasParameters, 3 * N> coupling =
-        Eigen::Matrix<double, Eigen::Dynamic, 3 * N, 0, kMaxEasParameters, 3 * N>::Zero(numAlpha,
-                                                                                        3 * N);
+    Coupling coupling = Coupling::Zero(numAlpha, 3 * N);
     if (tangent != nullptr) tangent->setZero();
     // Contravariant stresses S^ij = T^T S, gathered per sampling point for the geometric part:
     // the second variation of sum_p w E_k(p) is that of E_k at point p.
-    std::vector<Vector6d> pointStress(scheme_.samplingPoints.size(), Vector6d::Zero());
+    std::vector<Vector6d>& pointStress = workspace().pointStress;
+    pointStress.assign(scheme_.samplingPoints.size(), Vector6d::Zero());
     for (int g = 0; g < NG; ++g) {
       const EasGaussPoint& point = state.eas[g];
-      tl::addInternalForce<N>(state.cartesianB[g], point.stress, point.volume, fint);
-      if (numAlpha > 0) {
-        coupling.noalias() += point.enhancement.transpose() *
-                              (point.volume * point.materialTangent) * state.cartesianB[g];
-      }
+      const tl::StrainDisplacement<N>& B = state.cartesianB[g];
+      tl::addInternalForce<N>(B, point.stress, point.volume, fint);
+      const tl::StrainDisplacement<N> weightedDB =
+          (point.volume * point.materialTangent).lazyProduct(B);
+      if (numAlpha > 0) coupling.noalias() += point.enhancement.transpose().lazyProduct(weightedDB);
       if (tangent == nullptr) continue;
-      tl::addMaterialStiffnessUpperBlocks<N>(state.cartesianB[g], point.materialTangent,
-                                             point.volume, *tangent);
+      for (int b = 0; b < N; ++b) {  // K_ab += B_a^T D B_b dV for a <= b (symmetric)
+        for (int a = 0; a <= b; ++a) {
+          tangent->template block<3, 3>(3 * a, 3 * b).noalias() +=
+              B.template middleCols<3>(3 * a).transpose() *
+              weightedDB.template middleCols<3>(3 * b);
+        }
+      }
       const Vector6d contravariantStress = state.toCartesian[g].transpose() * point.stress;
       for (int k = 0; k < 6; ++k) {
         for (const InterpolationTerm& term : scheme_.terms[g][k]) {
@@ -176,10 +196,7 @@ class AssumedStrainKernel {
       }
     }
     if (tangent != nullptr) {
-      for (std::size_t p = 0; p < pointStress.size(); ++p) {
-        tl::addGeometricStiffnessUpperBlocks<N>(scheme_.samplingGradients[p],
-                                                stressFromVoigt(pointStress[p]), 1.0, *tangent);
-      }
+      addGeometricStiffness(pointStress, *tangent);
       tl::mirrorUpperBlocks<N>(*tangent);
     }
     if (numAlpha == 0) return;
@@ -189,7 +206,24 @@ class AssumedStrainKernel {
     const EasVector residualCorrection = factorization.solve(system.residual);
     fint.noalias() -= coupling.transpose() * residualCorrection;
     if (tangent != nullptr) {
-      tangent->noalias() -= coupling.transpose() * factorization.solve(coupling);
+      const Coupling condensed = factorization.solve(coupling);
+      tangent->noalias() -= coupling.transpose().lazyProduct(condensed);
+    }
+  }
+
+  // K_ab += sum_p (dN_a . S_p dN_b) I_3 for a <= b: the geometric stiffness of all sampling
+  // points, gathered into one N x N matrix before it is spread over the node blocks.
+  void addGeometricStiffness(const std::vector<Vector6d>& pointStress, Matrix& tangent) const {
+    Eigen::Matrix<double, N, N> geometric = Eigen::Matrix<double, N, N>::Zero();
+    for (std::size_t p = 0; p < pointStress.size(); ++p) {
+      const tl::ShapeGradients<N>& dN = scheme_.samplingGradients[p];
+      const tl::ShapeGradients<N> dNS = dN * stressFromVoigt(pointStress[p]);
+      geometric.noalias() += dNS.lazyProduct(dN.transpose());
+    }
+    for (int b = 0; b < N; ++b) {
+      for (int a = 0; a <= b; ++a) {
+        tangent.template block<3, 3>(3 * a, 3 * b).diagonal().array() += geometric(a, b);
+      }
     }
   }
 

@@ -61,14 +61,46 @@ struct AssumedStrainScheme {
   void useCompatible(int component) {
     for (int g = 0; g < NG; ++g) terms[g][component] = {{g, 1.0}};
   }
+  // Shape gradients at the sampling points and which strain components each point supplies
+  // (an ANS tying point needs one row of the strain-displacement matrix, not six); call last.
   template <class Shape>
-  void computeShapeGradients() {
+  void finalize() {
     samplingGradients.clear();
-    for (const Eigen::Vector3d& xi : samplingPoints)
+    for (const Eigen::Vector3d& xi : samplingPoints) {
       samplingGradients.push_back(Shape::gradients(xi));
+    }
     centreGradients = Shape::gradients(Eigen::Vector3d::Zero());
+    usedComponents.assign(samplingPoints.size(), {});
+    for (const auto& gaussPointTerms : terms) {
+      for (int k = 0; k < 6; ++k) {
+        for (const InterpolationTerm& term : gaussPointTerms[k]) {
+          usedComponents[term.point][k] = true;
+        }
+      }
+    }
   }
+  std::vector<std::array<bool, 6>> usedComponents;  // per sampling point, set by finalize()
 };
+
+// Covariant strain component k (Voigt, engineering shears) at a point with reference and current
+// bases G, g, and its row of the strain-displacement matrix: d(g_i.g_j) = dN_a,i g_j + dN_a,j g_i.
+// `row` is a 1 x 3N writable Eigen expression (e.g. a row of a StrainDisplacement<N>).
+template <int N, class Row>
+double covariantComponent(int k, const Eigen::Matrix3d& G, const Eigen::Matrix3d& g,
+                          const tl::ShapeGradients<N>& dNdxi, Row&& row) {
+  const int i = kVoigtPairs[k][0];
+  const int j = kVoigtPairs[k][1];
+  for (int a = 0; a < N; ++a) {
+    if (i == j) {
+      row.template segment<3>(3 * a) = dNdxi(a, i) * g.col(i).transpose();
+    } else {
+      row.template segment<3>(3 * a) =
+          (dNdxi(a, i) * g.col(j) + dNdxi(a, j) * g.col(i)).transpose();
+    }
+  }
+  const double normalFactor = i == j ? 0.5 : 1.0;  // E_ii = (g_i.g_i - G_i.G_i) / 2
+  return normalFactor * (g.col(i).dot(g.col(j)) - G.col(i).dot(G.col(j)));
+}
 
 // T with e_cartesian = T e_covariant (Voigt, engineering shears) for E = A^T E_cov A, where
 // A = J^-1 maps Cartesian to parametric increments: E_kl = sum_ij A_ik E_ij A_jl.
