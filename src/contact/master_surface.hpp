@@ -49,8 +49,9 @@ class MasterSurface {
   double typicalSegmentSize() const { return typicalSize_; }
 
  private:
-  // Whether a projection parameter lies on the segment, or just beyond a free surface edge.
-  bool accepts(int segment, const Eigen::Vector2d& xi) const;
+  // Whether a projection parameter lies on the segment (up to `tolerance` beyond a shared edge),
+  // or just beyond a free surface edge.
+  bool accepts(int segment, const Eigen::Vector2d& xi, double tolerance) const;
 
   using CellKey = long long;
   CellKey cellKey(const Eigen::Vector3i& cell) const;
