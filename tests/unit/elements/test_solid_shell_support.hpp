@@ -151,6 +151,28 @@ inline Eigen::VectorXd bodyForce(const ShellMesh& mesh, const Vector3d& b) {
   return force;
 }
 
+// K u with K the assembled tangent at the reference configuration.
+inline Eigen::VectorXd assembleTangentTimes(const cc::ElementKernel& element,
+                                            const cc::Material& material, const ShellMesh& mesh,
+                                            const Eigen::VectorXd& u) {
+  Eigen::VectorXd result = Eigen::VectorXd::Zero(u.size());
+  for (const auto& connectivity : mesh.elements) {
+    const Eigen::Matrix3Xd X = gatherNodes(mesh.nodes, connectivity);
+    Eigen::VectorXd fint, local(3 * connectivity.size());
+    Eigen::MatrixXd K;
+    const cc::ElementStatus status = element.evaluate(X, X, material, {}, fint, &K);
+    if (!status.ok()) ADD_FAILURE() << status.detail;
+    for (std::size_t a = 0; a < connectivity.size(); ++a) {
+      local.segment<3>(3 * a) = u.segment<3>(3 * connectivity[a]);
+    }
+    const Eigen::VectorXd product = K * local;
+    for (std::size_t a = 0; a < connectivity.size(); ++a) {
+      result.segment<3>(3 * connectivity[a]) += product.segment<3>(3 * a);
+    }
+  }
+  return result;
+}
+
 // Linear static solution K u = f about the reference configuration with u_d = 0 on the
 // constrained dofs (dof = 3 node + component).
 inline Eigen::VectorXd solveLinear(const cc::ElementKernel& element, const cc::Material& material,
