@@ -75,6 +75,7 @@ class SolidShellKernelTest : public ::testing::TestWithParam<KernelCase> {
 INSTANTIATE_TEST_SUITE_P(SolidShells, SolidShellKernelTest,
                          ::testing::Values(KernelCase{"shell8_svk_eas1", kSvk, false, 1},
                                            KernelCase{"shell8_neo_hooke_eas1", kNeoHooke, false, 1},
+                                           KernelCase{"shell8_neo_hooke_eas3", kNeoHooke, false, 3},
                                            KernelCase{"shell8_svk_eas7", kSvk, false, 7},
                                            KernelCase{"shell8_neo_hooke_eas7", kNeoHooke, false, 7},
                                            KernelCase{"shell8_svk_eas0", kSvk, false, 0},
