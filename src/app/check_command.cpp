@@ -10,6 +10,7 @@
 #include "model/model.hpp"
 #include "output/hdf5_io.hpp"
 #include "output/results_writer.hpp"
+#include "verification/reference_tracker.hpp"
 
 namespace cc::app {
 
@@ -24,6 +25,7 @@ int checkCommand(const std::string& deck, bool listKeywords) {
     // Checked without creating anything (check writes no files).
     checkOutputWritable(path, {});
     const auto model = buildModel(spec);
+    const verification::ReferenceTracker references(*model);  // checks the `reference` lines
     fmt::print("{}: valid. {} nodes, {} elements, {} equations, {} prescribed dofs, {} contact "
                "pairs with {} points, {} phases\n",
                deck, model->mesh().numNodes(), model->elementCount(), model->dofMap().numFree(),

@@ -17,6 +17,8 @@
 #include "output/hdf5_io.hpp"
 #include "output/results_writer.hpp"
 #include "solver/load_stepper.hpp"
+#include "verification/reference_report.hpp"
+#include "verification/reference_tracker.hpp"
 
 namespace cc::app {
 
@@ -29,8 +31,13 @@ extern "C" void requestStop(int) { stopSignal.store(true); }
 // Receives the stepper's records: writes them and reports progress.
 class RunObserver : public StepObserver {
  public:
-  RunObserver(Model& model, ResultsWriter& writer, Progress& progress, bool withStress)
-      : model_(model), writer_(writer), progress_(progress), withStress_(withStress) {}
+  RunObserver(Model& model, ResultsWriter& writer, Progress& progress, bool withStress,
+              verification::ReferenceTracker* references = nullptr)
+      : model_(model),
+        writer_(writer),
+        progress_(progress),
+        withStress_(withStress),
+        references_(references) {}
 
   void iteration(const IterationRecord& record) override {
     writer_.appendIteration(record);
@@ -43,9 +50,12 @@ class RunObserver : public StepObserver {
   void stepConverged(int step, double time, int iterations, int cutbacks,
                      const Eigen::VectorXd& displacement, const Eigen::VectorXd& internalForce,
                      bool writeOutput) override {
-    if (writeOutput) {
-      writer_.writeStep(model_.stepRecord(step, time, iterations, cutbacks, displacement,
-                                          internalForce, withStress_));
+    const bool compare = references_ && !references_->empty();
+    if (writeOutput || compare) {
+      const StepRecord record = model_.stepRecord(step, time, iterations, cutbacks, displacement,
+                                                  internalForce, withStress_ && writeOutput);
+      if (writeOutput) writer_.writeStep(record);
+      if (compare) references_->observe(record);  // every converged step, written or not
     }
     progress_.stepConverged(step, time, iterations, cutbacks);
   }
@@ -56,6 +66,7 @@ class RunObserver : public StepObserver {
   ResultsWriter& writer_;
   Progress& progress_;
   bool withStress_;
+  verification::ReferenceTracker* references_;
 };
 
 OutputSelection selectionOf(const OutputSpec& output) {
@@ -109,6 +120,7 @@ int runCommand(const RunOptions& options) {
   const auto start = Clock::now();
   if (options.threads > 0) omp_set_num_threads(options.threads);
   std::unique_ptr<Model> model;
+  std::unique_ptr<verification::ReferenceTracker> references;
   std::string path;
   OutputSelection selection;
   try {
@@ -117,6 +129,7 @@ int runCommand(const RunOptions& options) {
     selection = selectionOf(spec.output);
     checkOutputWritable(path, selection);
     model = buildModel(spec);
+    references = std::make_unique<verification::ReferenceTracker>(*model);
   } catch (const InputError& error) {
     std::cerr << error.what() << "\n";
     return kExitInput;
@@ -141,7 +154,7 @@ int runCommand(const RunOptions& options) {
     return kExitIo;
   }
   Progress progress(plannedSteps(spec), options.quiet);
-  RunObserver observer(*model, writer, progress, selection.stress);
+  RunObserver observer(*model, writer, progress, selection.stress, references.get());
   stopSignal.store(false);
   std::signal(SIGINT, requestStop);
   std::signal(SIGTERM, requestStop);
@@ -164,7 +177,19 @@ int runCommand(const RunOptions& options) {
     fmt::print("completed: {} steps, {} Newton iterations, {} cut-backs in {:.2f} s; results in {}\n",
                summary.stepsConverged, summary.totalIterations, summary.totalCutbacks, seconds,
                path);
-  } else {
+  }
+  if (!references->empty()) {
+    const verification::RunCost cost{seconds, summary.totalIterations, summary.stepsConverged};
+    const auto errors = references->results();
+    fmt::print("{}", verification::formatReferenceErrors(errors, cost));
+    try {
+      verification::writeReferenceErrors(path, errors, cost);
+    } catch (const OutputError& error) {
+      std::cerr << "covcontact: error: " << error.what() << "\n";
+      return kExitIo;
+    }
+  }
+  if (summary.outcome != RunSummary::Outcome::Completed) {
     std::cerr << fmt::format("covcontact: run {} at t = {:.6g}: {}\n", outcomeName(summary.outcome),
                              summary.finalTime, summary.message)
               << fmt::format("covcontact: the {} converged steps are kept in {}\n",
