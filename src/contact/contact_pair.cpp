@@ -203,7 +203,11 @@ void ContactPair::initializeHistory(const AssemblyState& state) {
       point.committed.xi = point.xi;
     }
   }
-  for (Point& point : points_) buildItem(point);
+  for (Point& point : points_) {
+    point.committedSearchSegment = point.segment;
+    point.committedSearchXi = point.xi;
+    buildItem(point);
+  }
   ++topologyVersion_;
   historyInitialized_ = true;
 }
@@ -316,6 +320,8 @@ void ContactPair::commitStep() {
     h.accumulatedSlip += t.slipIncrement;
     h.masterPoint = t.masterPoint;
     h.surfaceOffset = surfaceOffset_;
+    point.committedSearchSegment = point.segment;
+    point.committedSearchXi = point.xi;
   }
   // The previous-segment nodes of the items follow the new history.
   for (Point& point : points_) buildItem(point);
@@ -325,8 +331,8 @@ void ContactPair::commitStep() {
 void ContactPair::restoreStep() {
   for (Point& point : points_) {
     if (config_.kind != PointKind::SegmentToAnalytical) {
-      point.segment = point.committed.projected ? point.committed.segment : point.segment;
-      point.xi = point.committed.xi;
+      point.segment = point.committedSearchSegment;
+      point.xi = point.committedSearchXi;
     }
     point.trial = Trial{};
     buildItem(point);

@@ -90,6 +90,10 @@ class ContactPair : public Contribution {
     // Search state of the current iteration.
     int segment = -1;
     Eigen::Vector2d xi = Eigen::Vector2d::Zero();
+    // The search state right after the last commit: a cut-back restores it, so that the retried
+    // step starts its search exactly where the first attempt did.
+    int committedSearchSegment = -1;
+    Eigen::Vector2d committedSearchXi = Eigen::Vector2d::Zero();
     // The item: node list and where the slave/master/previous-master nodes sit in it.
     std::vector<int> nodes;
     PointLayout layout;
