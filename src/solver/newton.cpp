@@ -7,6 +7,8 @@
 #include <cmath>
 #include <limits>
 
+#include "solver/rigid_body_modes.hpp"
+
 namespace cc {
 
 namespace {
@@ -171,7 +173,13 @@ NewtonResult Newton::solve(const NewtonStep& step, const NewtonSpec& spec,
       linear_.factorize(tangent_);
       du = linear_.solve(rhs);
     } catch (const StepFailure& failure) {
-      return failed(iteration, failure.kind(), failure.what());
+      if (failure.kind() != FailureKind::SingularSystem) {
+        return failed(iteration, failure.kind(), failure.what());
+      }
+      // Name what is missing (a support, a contact) rather than only the pivot that showed it.
+      return failed(iteration, failure.kind(),
+                    describeSingularStiffness(tangent_.free, dofs, current_, problem_.bodies()) +
+                        " (" + failure.what() + ")");
     }
     norms.energy = std::abs(du.dot(rhs));
     if (iteration == 1) norms.firstEnergy = norms.energy;

@@ -3,12 +3,20 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <string>
+#include <vector>
 
 #include "fem/assembler.hpp"
 #include "fem/dof_map.hpp"
 #include "output/results.hpp"
 
 namespace cc {
+
+// The nodes of one body (a connected group of elements), named after its element blocks.
+struct BodyNodes {
+  std::string name;
+  std::vector<int> nodes;
+};
 
 class NonlinearProblem {
  public:
@@ -25,6 +33,9 @@ class NonlinearProblem {
                         SystemMatrices* tangent) = 0;
   virtual void commitStep() = 0;   // the step converged: keep its history
   virtual void restoreStep() = 0;  // the step is cut back: forget the attempt
+  // The bodies, for naming the rigid-body motions a singular tangent leaves free
+  // (solver/rigid_body_modes.hpp). Empty: all nodes form one body.
+  virtual std::vector<BodyNodes> bodies() const { return {}; }
 };
 
 // Receives what the stepper produces; the model and the results writer live behind it.

@@ -1,0 +1,57 @@
+// Diagnosis of a singular tangent: which rigid-body motions (three translations, three rotations
+// about the centroid) of which body the assembled stiffness K_ff leaves unrestrained, so that a
+// "singular system" failure can say what support is missing instead of only quoting a pivot.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <string>
+#include <vector>
+
+#include "fem/dof_map.hpp"
+#include "solver/linear_solver.hpp"
+#include "solver/nonlinear_problem.hpp"
+
+namespace cc {
+
+enum class RigidMotion {
+  TranslationX,
+  TranslationY,
+  TranslationZ,
+  RotationX,
+  RotationY,
+  RotationZ
+};
+
+// "translation along x", "rotation about z".
+std::string describe(RigidMotion motion);
+
+// A rigid-body motion r of one body counts as unrestrained when ||K_ff r|| is below this
+// fraction of ||r|| times the largest column norm of K_ff. An exactly free motion leaves only the
+// round-off of the assembled sums (measured below 1e-15 of that scale); the weakest restraint in
+// input/stress (a frictionless contact holding a block against rotation) measures above 1e-3.
+inline constexpr double kUnrestrainedMotionRatio = 1e-8;
+
+struct RigidMotionRestraint {
+  int body = 0;  // index into the bodies given
+  RigidMotion motion = RigidMotion::TranslationX;
+  double ratio =
+      0;  // ||K_ff r|| / (||r|| max_j ||K_ff e_j||); below kUnrestrainedMotionRatio: free
+};
+
+// The restraint of every rigid-body motion of every body that moves at least one free dof.
+// `coordinates` is the current configuration (rotations are about each body's centroid there);
+// `bodies` empty means all nodes form one body.
+std::vector<RigidMotionRestraint> rigidMotionRestraints(const SparseMatrix& freeStiffness,
+                                                        const DofMap& dofs,
+                                                        const Eigen::Matrix3Xd& coordinates,
+                                                        const std::vector<BodyNodes>& bodies);
+
+// The message naming the unrestrained motions, e.g. "unconstrained rigid-body motion:
+// translation along x of body 'block'", or, when none is found, a sentence saying so with the
+// least restrained motion.
+std::string describeSingularStiffness(const SparseMatrix& freeStiffness, const DofMap& dofs,
+                                      const Eigen::Matrix3Xd& coordinates,
+                                      const std::vector<BodyNodes>& bodies);
+
+}  // namespace cc
