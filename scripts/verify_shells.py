@@ -451,10 +451,12 @@ def write_report(all_rows):
                          f"{reference:.5g} | {error:.2%} | {seconds:.2f} |")
             if variant.tolerance and math.isfinite(error):
                 by_variant.setdefault(variant.label, []).append((seconds, max(error, 1e-6)))
+        color = f"C{[c.name for c in CASES].index(case.name)}"  # one colour per case
         for label, points in by_variant.items():
             times, errors = zip(*points)
-            axes.loglog(times, errors, marker="o" if label.endswith("8") else "s",
-                        label=f"{case.name} {label}")
+            quadratic = label.endswith("18")
+            axes.loglog(times, errors, color=color, marker="s" if quadratic else "o",
+                        linestyle="--" if quadratic else "-", label=f"{case.name} {label}")
     axes.axhline(0.02, color="grey", linestyle=":", linewidth=1)
     axes.set_xlabel("run time of covcontact [s]")
     axes.set_ylabel("relative error (worst quantity)")
@@ -462,9 +464,21 @@ def write_report(all_rows):
     axes.grid(True, which="both", linewidth=0.3)
     figure.tight_layout()
     figure.savefig(os.path.join(DOC_DIR, "shells_error_vs_time.png"), dpi=110)
-    with open(os.path.join(DOC_DIR, "shells_table.md"), "w") as table:
-        table.write("\n".join(lines) + "\n")
+    replace_between_markers(os.path.join(DOC_DIR, "shells.md"), "\n".join(lines))
     print("\n".join(lines))
+
+
+def replace_between_markers(path, table):
+    """Puts the sweep table into the verification page between its sweep-table markers."""
+    begin, end = "<!-- sweep-table:begin -->", "<!-- sweep-table:end -->"
+    with open(path) as page:
+        text = page.read()
+    if begin not in text or end not in text:
+        raise RuntimeError(f"{path} has no {begin} ... {end} section")
+    head, rest = text.split(begin, 1)
+    tail = rest.split(end, 1)[1]
+    with open(path, "w") as page:
+        page.write(f"{head}{begin}\n{table}\n{end}{tail}")
 
 
 def command_sweep(args):
