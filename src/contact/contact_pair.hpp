@@ -56,6 +56,13 @@ class ContactPair : public Contribution {
 
   // Output of the last evaluated (after commit: converged) state.
   ContactPairRecord record() const;
+
+  // Restart (contact_pair_history.cpp): the committed history of every point and the search
+  // state it continues from, one column of kHistoryRows numbers per point, and its
+  // restoration. importHistory throws std::invalid_argument if the table does not fit the pair.
+  static constexpr int kHistoryRows = 20;
+  Eigen::MatrixXd exportHistory() const;
+  void importHistory(const Eigen::MatrixXd& table);
   const ContactPairConfig& config() const { return config_; }
   int pointCount() const { return static_cast<int>(points_.size()); }
 

@@ -4,6 +4,8 @@
 #pragma once
 
 #include <memory>
+#include <span>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -27,6 +29,20 @@ class ElementSet : public Contribution {
                        Eigen::MatrixXd* tangent) override;
   void commitStep() override { committedHistory_ = history_; }
   void restoreStep() override { history_ = committedHistory_; }
+
+  // Restart: the committed history (historySize doubles per element, e.g. EAS parameters) and
+  // its restoration as both the committed and the trial state. importHistory throws
+  // std::invalid_argument if the size does not fit this set.
+  const std::vector<double>& exportHistory() const { return committedHistory_; }
+  void importHistory(std::span<const double> history) {
+    if (history.size() != committedHistory_.size()) {
+      throw std::invalid_argument("element set '" + name_ + "': history has " +
+                                  std::to_string(history.size()) + " values, expected " +
+                                  std::to_string(committedHistory_.size()));
+    }
+    committedHistory_.assign(history.begin(), history.end());
+    history_ = committedHistory_;
+  }
 
   // Volume-averaged Cauchy stress of every element at configuration x (Voigt, 6 x elements).
   Eigen::Matrix<double, 6, Eigen::Dynamic> cauchyStress(const Eigen::Matrix3Xd& reference,

@@ -34,6 +34,14 @@ class Model : public NonlinearProblem {
                 SystemMatrices* tangent) override;
   void commitStep() override;
   void restoreStep() override;
+  // Connected groups of elements, each named after its element blocks (model_state.cpp).
+  std::vector<BodyNodes> bodies() const override;
+
+  // Restart (model_state.cpp): the committed element and contact history (displacement and
+  // step size are left to the caller), and its restoration. restoreHistory throws
+  // std::invalid_argument naming what does not fit, e.g. when the deck or its mesh changed.
+  RestartRecord saveHistory() const;
+  void restoreHistory(const RestartRecord& history);
 
   const Mesh& mesh() const { return mesh_; }
   const ProblemSpec& spec() const { return spec_; }

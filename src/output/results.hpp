@@ -28,6 +28,17 @@ struct ContactPairRecord {
   Eigen::Matrix3Xd slaveNodalForce;
 };
 
+// What a run needs to continue from a converged step besides the displacement: the element
+// and contact history and the load stepper's step size (written per step by the results writer,
+// read back by readRestart in output/restart_io.hpp for `covcontact run --restart`).
+struct RestartRecord {
+  Eigen::VectorXd displacement;  // 3 * numNodes, node-major
+  std::vector<std::pair<std::string, std::vector<double>>> elementHistory;  // per element set
+  std::vector<std::pair<std::string, Eigen::MatrixXd>> contactHistory;      // per contact pair
+  double stepFraction = 1;  // the next step's size in units of its phase's dt
+  int easySteps = 0;        // consecutive easy steps counted towards regrowth
+};
+
 struct StepRecord {
   int step = 0;          // 1-based count of converged steps
   double time = 0;
@@ -38,6 +49,7 @@ struct StepRecord {
   std::vector<std::pair<std::string, Eigen::Vector3d>> setReactions;  // summed per node set
   const Eigen::Matrix<double, 6, Eigen::Dynamic>* stress = nullptr;   // Cauchy, per element
   std::vector<ContactPairRecord> contact;
+  const RestartRecord* restart = nullptr;  // optional: written to /steps/<step>/restart
 };
 
 struct IterationRecord {

@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "output/reactions_csv.hpp"
+#include "output/restart_io.hpp"
 #include "output/results_layout.hpp"
 #include "output/results_mesh.hpp"
 #include "output/xdmf_writer.hpp"
@@ -261,6 +262,7 @@ void ResultsWriter::writeStepGroup(const StepRecord& step, hid_t group) {
       h5::writeDoubles(file, group, layout::kSetReactions, setForces.data(), setNames.size(), 3);
   h5::writeAttribute(file, setReactions.get(), "names", setNames);
   if (selection.contact && !step.contact.empty()) writeContact(step, group);
+  if (step.restart != nullptr) writeRestart(file, group, *step.restart, !selection.displacement);
 }
 
 void ResultsWriter::writeContact(const StepRecord& step, hid_t stepGroup) {

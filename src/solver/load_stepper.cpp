@@ -84,6 +84,8 @@ RunSummary LoadStepper::run(const StartState& start) {
   run.converged = run.displacement;
   run.time = start.time;
   run.step = start.step;
+  nextStepSize_ = start.stepSize;
+  resumeStepSize_ = start.step > 0;
   summary_.finalTime = start.time;
   double phaseStart = 0;
   for (const PhaseSpec& phase : phases_) {
@@ -97,6 +99,15 @@ RunSummary LoadStepper::run(const StartState& start) {
 bool LoadStepper::runPhase(const PhaseSpec& phase, double phaseStart, PhaseRun& run) {
   StepControl control;
   double position = std::max(0.0, snapped((run.time - phaseStart) / phase.dt));
+  if (resumeStepSize_ && position < phase.steps) {
+    // A restart inside this phase continues with the stored step size; at a phase start the
+    // phase begins afresh, as it would have.
+    resumeStepSize_ = false;
+    if (position > 0) {
+      control.fraction = nextStepSize_.fraction;
+      control.easySteps = nextStepSize_.easySteps;
+    }
+  }
   while (position < phase.steps) {
     const double target = snapped(std::min(position + control.fraction, std::floor(position) + 1));
     const double targetTime = phaseStart + target * phase.dt;
@@ -139,14 +150,16 @@ bool LoadStepper::acceptStep(const PhaseSpec& phase, const NewtonResult& result,
   summary_.totalIterations += result.iterations;
   summary_.finalTime = time;
   const bool write = control.convergedInPhase % phase.outputEvery == 0 || phaseEnd;
-  observer_.stepConverged(run.step, time, result.iterations, control.cutbacks, run.displacement,
-                          newton_->internalForce(), write);
   const CutbackSpec& cutback = phase.cutback;
   control.easySteps = result.iterations <= cutback.easyIterations ? control.easySteps + 1 : 0;
   if (control.easySteps >= cutback.growAfter && control.fraction < 1) {
     control.fraction = std::min(1.0, control.fraction * cutback.growFactor);
     control.easySteps = 0;
   }
+  // At a phase end the next phase starts with a full step.
+  nextStepSize_ = phaseEnd ? StepSize{} : StepSize{control.fraction, control.easySteps};
+  observer_.stepConverged(run.step, time, result.iterations, control.cutbacks, run.displacement,
+                          newton_->internalForce(), write);
   control.cutbacks = 0;
   control.attempts = 0;
   control.singularAtStart = false;

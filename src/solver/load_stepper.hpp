@@ -28,11 +28,20 @@ struct RunSummary {
   std::string message;  // why the run stopped, if it did not complete
 };
 
-// Where a run starts: t = 0 and zero displacement, or a restart from a stored step.
+// The automatic step size: the next step in units of its phase's dt, and the consecutive easy
+// steps counted towards regrowth.
+struct StepSize {
+  double fraction = 1;
+  int easySteps = 0;
+};
+
+// Where a run starts: t = 0 and zero displacement, or a restart from a stored step (with the
+// step size the interrupted run would have used next, so that it continues identically).
 struct StartState {
   int step = 0;
   double time = 0;
   Eigen::VectorXd displacement;  // 3 * numNodes; empty = zero
+  StepSize stepSize;
 };
 
 class LoadStepper {
@@ -42,6 +51,9 @@ class LoadStepper {
   RunSummary run(const StartState& start = {});
   // Work so far (also during run(), e.g. from the observer for a progress line).
   SolverStatistics statistics() const;
+  // The step size of the next step; during StepObserver::stepConverged, the one that follows
+  // the converged step (what a restart from that step needs).
+  StepSize nextStepSize() const { return nextStepSize_; }
 
  private:
   struct PhaseRun;
@@ -58,6 +70,8 @@ class LoadStepper {
   std::vector<PhaseSpec> phases_;
   std::unique_ptr<Newton> newton_;
   RunSummary summary_;
+  StepSize nextStepSize_;
+  bool resumeStepSize_ = false;  // a restart's step size still waits for its phase
 };
 
 }  // namespace cc

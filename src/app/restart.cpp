@@ -1,0 +1,48 @@
+// Restart of a run from a results file: reading the stored state into the model and the stepper.
+#include "app/restart.hpp"
+
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <stdexcept>
+
+#include "common/errors.hpp"
+#include "output/restart_io.hpp"
+
+namespace cc::app {
+
+StartState restartFrom(const std::string& file, int fromStep, Model& model) {
+  RestartPoint point = readRestart(file, fromStep);
+  try {
+    model.restoreHistory(point.record);
+  } catch (const std::invalid_argument& mismatch) {
+    throw InputError(SourceLocation{file, 0, 0},
+                     fmt::format("step {} does not fit the deck's model ({}); restart with the "
+                                 "deck and mesh that wrote it",
+                                 point.step, mismatch.what()));
+  }
+  StartState start;
+  start.step = point.step;
+  start.time = point.time;
+  start.displacement = std::move(point.record.displacement);
+  start.stepSize = {point.record.stepFraction, point.record.easySteps};
+  return start;
+}
+
+RestartRecord restartRecordOf(const Model& model, const Eigen::VectorXd& displacement,
+                              const StepSize& nextStepSize) {
+  RestartRecord record = model.saveHistory();
+  record.displacement = displacement;
+  record.stepFraction = nextStepSize.fraction;
+  record.easySteps = nextStepSize.easySteps;
+  return record;
+}
+
+bool sameFile(const std::string& first, const std::string& second) {
+  std::error_code error;
+  if (std::filesystem::equivalent(first, second, error)) return true;
+  return std::filesystem::weakly_canonical(first, error) ==
+         std::filesystem::weakly_canonical(second, error);
+}
+
+}  // namespace cc::app

@@ -1,0 +1,106 @@
+// Writing and reading the restart group of a step (see restart_io.hpp).
+#include "output/restart_io.hpp"
+
+#include <algorithm>
+
+#include "output/results_layout.hpp"
+#include "output/results_reader.hpp"
+
+namespace cc {
+
+namespace {
+
+std::string restartGroupPath(int step) {
+  return layout::stepGroupPath(step) + "/" + layout::kRestartGroup;
+}
+
+// Datasets of one history group keep the user's name in the "name" attribute (link names
+// replace '/', see layout::linkName).
+void writeNamed(h5::FileRef file, hid_t group, const std::string& name, const double* data,
+                hsize_t rows, hsize_t cols) {
+  h5::Dataset dataset = h5::writeDoubles(file, group, layout::linkName(name), data, rows, cols);
+  h5::writeAttribute(file, dataset.get(), "name", name);
+}
+
+}  // namespace
+
+void writeRestart(h5::FileRef file, hid_t stepGroup, const RestartRecord& restart,
+                  bool withDisplacement) {
+  h5::Group group = h5::createGroup(file, stepGroup, layout::kRestartGroup);
+  h5::writeAttribute(file, group.get(), "step_fraction", restart.stepFraction);
+  h5::writeAttribute(file, group.get(), "easy_steps", restart.easySteps);
+  h5::writeAttribute(file, group.get(), "with_displacement", withDisplacement ? 1 : 0);
+  if (withDisplacement) {
+    h5::writeDoubles(file, group.get(), layout::kDisplacement, restart.displacement.data(),
+                     static_cast<hsize_t>(restart.displacement.size() / 3), 3);
+  }
+  h5::Group elements = h5::createGroup(file, group.get(), layout::kElementHistoryGroup);
+  for (const auto& [name, values] : restart.elementHistory) {
+    // An empty history (Hex8) is written as an empty dataset so that the set is still listed;
+    // HDF5 wants a buffer even for no values.
+    static constexpr double kNoValue = 0;
+    writeNamed(file, elements.get(), name, values.empty() ? &kNoValue : values.data(),
+               values.size(), 0);
+  }
+  h5::Group contact = h5::createGroup(file, group.get(), layout::kContactHistoryGroup);
+  for (const auto& [name, table] : restart.contactHistory) {
+    // Column-major rows x points is row-major points x rows: one row per point in the file.
+    writeNamed(file, contact.get(), name, table.data(), static_cast<hsize_t>(table.cols()),
+               static_cast<hsize_t>(table.rows()));
+  }
+}
+
+std::vector<int> restartSteps(const std::string& path) {
+  const ResultsReader reader(path);
+  std::vector<int> steps;
+  for (const StepHeader& header : reader.steps()) {
+    if (reader.hasGroup(restartGroupPath(header.step))) steps.push_back(header.step);
+  }
+  std::sort(steps.begin(), steps.end());
+  return steps;
+}
+
+RestartPoint readRestart(const std::string& path, int step) {
+  const ResultsReader reader(path);
+  const std::vector<int> available = restartSteps(path);
+  if (available.empty()) {
+    throw OutputError("'" + path + "' holds no restart data (no converged step was written)");
+  }
+  if (step < 0) step = available.back();
+  if (!std::binary_search(available.begin(), available.end(), step)) {
+    throw OutputError("'" + path + "' has no restart data for step " + std::to_string(step) +
+                      "; steps with restart data: " + std::to_string(available.front()) + " to " +
+                      std::to_string(available.back()) + " (" + std::to_string(available.size()) +
+                      " steps)");
+  }
+  RestartPoint point;
+  point.step = step;
+  const std::string stepPath = layout::stepGroupPath(step);
+  const std::string group = restartGroupPath(step);
+  point.time = reader.numberAttribute(stepPath, "time");
+  RestartRecord& record = point.record;
+  record.stepFraction = reader.numberAttribute(group, "step_fraction");
+  record.easySteps = static_cast<int>(reader.numberAttribute(group, "easy_steps"));
+  const bool own = reader.numberAttribute(group, "with_displacement") != 0;
+  const Eigen::MatrixXd nodal =
+      reader.readMatrix((own ? group : stepPath) + "/" + layout::kDisplacement);
+  const Eigen::MatrixXd byNode = nodal.transpose();  // 3 x numNodes, column-major = node-major
+  record.displacement = Eigen::Map<const Eigen::VectorXd>(byNode.data(), byNode.size());
+  const std::string elements = group + "/" + layout::kElementHistoryGroup;
+  for (const std::string& link : reader.children(elements)) {
+    const std::string dataset = elements + "/" + link;
+    const Eigen::MatrixXd values = reader.readMatrix(dataset);
+    record.elementHistory.emplace_back(
+        reader.stringAttribute(dataset, "name"),
+        std::vector<double>(values.data(), values.data() + values.size()));
+  }
+  const std::string contact = group + "/" + layout::kContactHistoryGroup;
+  for (const std::string& link : reader.children(contact)) {
+    const std::string dataset = contact + "/" + link;
+    record.contactHistory.emplace_back(reader.stringAttribute(dataset, "name"),
+                                       reader.readMatrix(dataset).transpose());
+  }
+  return point;
+}
+
+}  // namespace cc
