@@ -221,7 +221,7 @@ KeywordDecl outputKeyword() {
 
 KeywordDecl referenceKeyword() {
   return {.name = "reference",
-          .summary = "A reference value for a result quantity, checked by `covcontact compare`.",
+          .summary = "A reference value for a result quantity; `covcontact run` reports its error.",
           .positionals = {stringValue("QUANTITY",
                                       "result quantity, e.g. reaction:top:z or "
                                       "contact:pair1:force:z")},
