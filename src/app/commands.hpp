@@ -14,6 +14,8 @@ struct RunOptions {
   int threads = 0;     // 0 = OpenMP default
   std::string commandLine;
   bool quiet = false;
+  std::string restartFile;  // --restart: continue from a step of this results file
+  int restartStep = -1;     // --from-step; -1 = the last step with restart data
 };
 
 struct CompareOptionsCli {

@@ -41,6 +41,16 @@ int main(int argc, char** argv) {
   runCommand->add_option("--threads", run.threads, "Assembly threads (default: all cores)")
       ->check(CLI::PositiveNumber);
   runCommand->add_flag("-q,--quiet", run.quiet, "Print only the final summary");
+  auto* restartOption =
+      runCommand->add_option("--restart", run.restartFile,
+                             "Continue from a converged step stored in this results file (the "
+                             "deck and mesh must be those of the run that wrote it)")
+          ->check(CLI::ExistingFile);
+  runCommand
+      ->add_option("--from-step", run.restartStep,
+                   "Step of the --restart file to continue from (default: its last step)")
+      ->check(CLI::PositiveNumber)
+      ->needs(restartOption);
 
   std::string checkDeck;
   bool listKeywords = false;

@@ -11,6 +11,7 @@
 
 #include "app/commands.hpp"
 #include "app/progress.hpp"
+#include "app/restart.hpp"
 #include "common/errors.hpp"
 #include "deck/deck_parser.hpp"
 #include "model/model.hpp"
@@ -47,14 +48,22 @@ class RunObserver : public StepObserver {
     writer_.appendCutback(record);
     progress_.cutback(record);
   }
+  // The stepper whose next step size the restart data of every written step records.
+  void attach(const LoadStepper& stepper) { stepper_ = &stepper; }
+
   void stepConverged(int step, double time, int iterations, int cutbacks,
                      const Eigen::VectorXd& displacement, const Eigen::VectorXd& internalForce,
                      bool writeOutput) override {
     const bool compare = references_ && !references_->empty();
     if (writeOutput || compare) {
-      const StepRecord record = model_.stepRecord(step, time, iterations, cutbacks, displacement,
-                                                  internalForce, withStress_ && writeOutput);
-      if (writeOutput) writer_.writeStep(record);
+      StepRecord record = model_.stepRecord(step, time, iterations, cutbacks, displacement,
+                                            internalForce, withStress_ && writeOutput);
+      if (writeOutput) {
+        const RestartRecord restart =
+            restartRecordOf(model_, displacement, stepper_->nextStepSize());
+        record.restart = &restart;
+        writer_.writeStep(record);
+      }
       if (compare) references_->observe(record);  // every converged step, written or not
     }
     progress_.stepConverged(step, time, iterations, cutbacks);
@@ -67,6 +76,7 @@ class RunObserver : public StepObserver {
   Progress& progress_;
   bool withStress_;
   verification::ReferenceTracker* references_;
+  const LoadStepper* stepper_ = nullptr;
 };
 
 OutputSelection selectionOf(const OutputSpec& output) {
@@ -123,6 +133,7 @@ int runCommand(const RunOptions& options) {
   std::unique_ptr<verification::ReferenceTracker> references;
   std::string path;
   OutputSelection selection;
+  StartState startState;
   try {
     const ProblemSpec spec = parseDeck(options.deck);
     path = resultsPath(options.deck, spec.output.file, options.output);
@@ -130,6 +141,14 @@ int runCommand(const RunOptions& options) {
     checkOutputWritable(path, selection);
     model = buildModel(spec);
     references = std::make_unique<verification::ReferenceTracker>(*model);
+    if (!options.restartFile.empty()) {
+      if (sameFile(path, options.restartFile)) {
+        std::cerr << "covcontact: error: the results file '" << path
+                  << "' is the restart file; give another one with -o\n";
+        return kExitUsage;
+      }
+      startState = restartFrom(options.restartFile, options.restartStep, *model);
+    }
   } catch (const InputError& error) {
     std::cerr << error.what() << "\n";
     return kExitInput;
@@ -143,6 +162,10 @@ int runCommand(const RunOptions& options) {
                spec.title.empty() ? options.deck : spec.title, model->mesh().numNodes(),
                model->elementCount(), model->dofMap().numFree(), model->contactPointCount(),
                model->threads());
+    if (!options.restartFile.empty()) {
+      fmt::print("continuing from step {} (t = {:.6g}) of {}\n", startState.step, startState.time,
+                 options.restartFile);
+    }
   }
 
   ResultsWriter writer;
@@ -159,9 +182,10 @@ int runCommand(const RunOptions& options) {
   std::signal(SIGINT, requestStop);
   std::signal(SIGTERM, requestStop);
   LoadStepper stepper(*model, observer, spec.phases);
+  observer.attach(stepper);
   RunSummary summary;
   try {
-    summary = stepper.run();
+    summary = stepper.run(startState);
   } catch (const OutputError& error) {
     progress.finish();
     std::cerr << "covcontact: error: " << error.what() << "\n";
