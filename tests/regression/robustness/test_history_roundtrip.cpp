@@ -1,0 +1,110 @@
+// Restart support in-process (issue 7): the element (EAS) and contact (STAS) history a model
+// saves is restored exactly into a fresh model, a mismatching history is refused with its name,
+// and a run continued from a saved step ends exactly where the uninterrupted run ends.
+#include <gtest/gtest.h>
+
+#include "deck/deck_parser.hpp"
+#include "stress_support.hpp"
+
+namespace cc::test {
+namespace {
+
+// Saves the model's history, displacement and next step size at one converged step.
+class SavingObserver : public StepObserver {
+ public:
+  SavingObserver(Model& model, int saveAt) : model_(model), saveAt_(saveAt) {}
+  void attach(const LoadStepper& stepper) { stepper_ = &stepper; }
+  void stepConverged(int step, double time, int, int, const Eigen::VectorXd& displacement,
+                     const Eigen::VectorXd& internalForce, bool) override {
+    if (step == saveAt_) {
+      saved = model_.saveHistory();
+      saved.displacement = displacement;
+      saved.stepFraction = stepper_->nextStepSize().fraction;
+      saved.easySteps = stepper_->nextStepSize().easySteps;
+      savedTime = time;
+    }
+    lastDisplacement = displacement;
+    lastForce = internalForce;
+    lastContact = model_.stepRecord(step, time, 0, 0, displacement, internalForce, false).contact;
+    lastStep = step;
+  }
+
+  RestartRecord saved;
+  double savedTime = 0;
+  Eigen::VectorXd lastDisplacement, lastForce;
+  std::vector<ContactPairRecord> lastContact;
+  int lastStep = 0;
+
+ private:
+  Model& model_;
+  int saveAt_;
+  const LoadStepper* stepper_ = nullptr;
+};
+
+TEST(History, SavedElementAndContactHistoryRestoresExactlyIntoAFreshModel) {
+  const ProblemSpec spec = parseDeck(stressDeck("thin_shell_on_cylinder"));
+  const std::unique_ptr<Model> model = buildModel(spec);
+  SavingObserver observer(*model, 7);
+  LoadStepper stepper(*model, observer, spec.phases);
+  observer.attach(stepper);
+  ASSERT_EQ(stepper.run().outcome, RunSummary::Outcome::Completed);
+  const RestartRecord& saved = observer.saved;
+  ASSERT_EQ(saved.elementHistory.size(), 1u);
+  ASSERT_EQ(saved.contactHistory.size(), 1u);
+  // Solid-shell EAS parameters and STAS history (master point, surface offset) are not trivial.
+  EXPECT_GT(Eigen::Map<const Eigen::VectorXd>(saved.elementHistory[0].second.data(),
+                                              saved.elementHistory[0].second.size())
+                .cwiseAbs()
+                .maxCoeff(),
+            0.0);
+  EXPECT_GT(saved.contactHistory[0].second.cwiseAbs().maxCoeff(), 0.0);
+
+  const std::unique_ptr<Model> fresh = buildModel(spec);
+  fresh->restoreHistory(saved);
+  const RestartRecord again = fresh->saveHistory();
+  EXPECT_EQ(again.elementHistory[0].second, saved.elementHistory[0].second);
+  EXPECT_EQ(again.contactHistory[0].second, saved.contactHistory[0].second);
+
+  // Continue from step 7: the remaining steps end exactly where the uninterrupted run ended.
+  SavingObserver continued(*fresh, -1);
+  LoadStepper restarted(*fresh, continued, spec.phases);
+  continued.attach(restarted);
+  StartState start;
+  start.step = 7;
+  start.time = observer.savedTime;
+  start.displacement = saved.displacement;
+  start.stepSize = {saved.stepFraction, saved.easySteps};
+  ASSERT_EQ(restarted.run(start).outcome, RunSummary::Outcome::Completed);
+  EXPECT_EQ(continued.lastStep, observer.lastStep);
+  EXPECT_LT((continued.lastDisplacement - observer.lastDisplacement).cwiseAbs().maxCoeff(),
+            1e-12 * observer.lastDisplacement.cwiseAbs().maxCoeff());
+  EXPECT_LT((continued.lastContact[0].totalForce - observer.lastContact[0].totalForce).norm(),
+            1e-10 * observer.lastContact[0].totalForce.norm());
+}
+
+TEST(History, AHistoryThatDoesNotFitTheModelIsRefusedWithItsName) {
+  const ProblemSpec spec = parseDeck(stressDeck("slide_off_edge"));
+  const std::unique_ptr<Model> model = buildModel(spec);
+  RestartRecord history = model->saveHistory();
+  history.displacement = Eigen::VectorXd::Zero(3 * model->mesh().numNodes());
+  RestartRecord wrongPoints = history;
+  wrongPoints.contactHistory[0].second.conservativeResize(
+      Eigen::NoChange, history.contactHistory[0].second.cols() - 1);
+  try {
+    model->restoreHistory(wrongPoints);
+    ADD_FAILURE() << "a contact history with a point missing was accepted";
+  } catch (const std::invalid_argument& error) {
+    EXPECT_NE(std::string(error.what()).find("contact pair 'interface'"), std::string::npos)
+        << error.what();
+  }
+  RestartRecord missingBlock = history;
+  missingBlock.elementHistory.erase(missingBlock.elementHistory.begin());
+  EXPECT_THROW(model->restoreHistory(missingBlock), std::invalid_argument);
+  RestartRecord badSegment = history;
+  badSegment.contactHistory[0].second(1, 0) = 1e6;  // row 1: the master segment
+  EXPECT_THROW(model->restoreHistory(badSegment), std::invalid_argument);
+  EXPECT_NO_THROW(model->restoreHistory(history));
+}
+
+}  // namespace
+}  // namespace cc::test

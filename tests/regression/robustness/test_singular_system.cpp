@@ -1,0 +1,78 @@
+// Singular systems (issue 7): a body held only by contact in one direction stops the run with
+// exit code 7 and a message naming the unrestrained rigid-body motion, and the diagnosis itself
+// separates free motions (round-off) from restrained ones by many orders of magnitude.
+#include <gtest/gtest.h>
+
+#include "deck/deck_parser.hpp"
+#include "output/results_reader.hpp"
+#include "solver/rigid_body_modes.hpp"
+#include "stress_support.hpp"
+
+namespace cc::test {
+namespace {
+
+TEST(SingularSystem, BlockHeldOnlyByFrictionlessContactStopsNamingTranslationAlongX) {
+  const std::string directory = scratchDirectory("held_by_contact");
+  const CommandResult result = runCovcontact(
+      "run -q --threads 1 '" + stressDeck("held_by_contact_only") + "' -o run.h5", directory);
+  EXPECT_EQ(result.exitCode, kExitSingular) << result.error;
+  EXPECT_NE(result.error.find("unconstrained rigid-body motion: translation along x of body "
+                              "'block'"),
+            std::string::npos)
+      << result.error;
+  // Nothing else is free: the contact holds the block vertically and against rotation.
+  EXPECT_EQ(result.error.find("rotation"), std::string::npos) << result.error;
+  EXPECT_EQ(result.error.find("translation along y"), std::string::npos) << result.error;
+  const ResultsReader reader(directory + "/run.h5");
+  EXPECT_TRUE(reader.steps().empty());
+  EXPECT_EQ(reader.stringAttribute("/summary", "outcome"), "singular");
+}
+
+TEST(SingularSystem, ThinStripLoadedBeforeTouchingItsSupportNamesTranslationAlongZ) {
+  // thin_shell_on_cylinder.deck with the end loaded instead of supported: the strip only rests
+  // on the cylinder, whose nearest contact points are still open at the start.
+  std::string deck = readText(stressDeck("thin_shell_on_cylinder"));
+  deck = replaceOnce(deck, "fix end_bottom uz", "load end fz \"-t\" total");
+  deck = replaceOnce(deck, " uz \"t\"", "");
+  const DeckRun run = runStressText(deck, "thin_shell_on_cylinder");
+  EXPECT_EQ(run.summary.outcome, RunSummary::Outcome::Singular) << run.summary.message;
+  EXPECT_NE(run.summary.message.find(
+                "unconstrained rigid-body motion: translation along z of body 'strip'"),
+            std::string::npos)
+      << run.summary.message;
+  EXPECT_TRUE(run.steps.empty());
+}
+
+TEST(SingularSystem, FreeMotionsSitAtRoundOffAndRestrainedOnesFarAboveTheThreshold) {
+  // The first tangent of held_by_contact_only.deck, at the undeformed state.
+  const std::unique_ptr<Model> model = buildModel(parseDeck(stressDeck("held_by_contact_only")));
+  const Eigen::Matrix3Xd& coordinates = model->referenceCoordinates();
+  const AssemblyState state{0.5, 0.0, &coordinates, &coordinates, &coordinates};
+  Eigen::VectorXd force;
+  SystemMatrices tangent;
+  model->assemble(state, force, &tangent);
+  const std::vector<BodyNodes> bodies = model->bodies();
+  ASSERT_EQ(bodies.size(), 2u);
+  const std::vector<RigidMotionRestraint> restraints =
+      rigidMotionRestraints(tangent.free, model->dofMap(), coordinates, bodies);
+  int free = 0;
+  for (const RigidMotionRestraint& restraint : restraints) {
+    const std::string& body = bodies[restraint.body].name;
+    SCOPED_TRACE(body + ": " + describe(restraint.motion));
+    if (body == "block" && restraint.motion == RigidMotion::TranslationX) {
+      // Exactly free: only the round-off of the assembled sums is left.
+      EXPECT_LT(restraint.ratio, 1e-13);
+      ++free;
+    } else {
+      // Held by the supports or the contact's normal stiffness (measured >= 1e-3): four
+      // orders or more above kUnrestrainedMotionRatio = 1e-8.
+      EXPECT_GT(restraint.ratio, 1e4 * kUnrestrainedMotionRatio);
+    }
+  }
+  EXPECT_EQ(free, 1);
+  EXPECT_EQ(describeSingularStiffness(tangent.free, model->dofMap(), coordinates, bodies),
+            "unconstrained rigid-body motion: translation along x of body 'block'");
+}
+
+}  // namespace
+}  // namespace cc::test
