@@ -106,6 +106,10 @@ std::string readDeckFile(const std::string& path, const SourceLocation& requeste
   if (fs::is_directory(path, error)) {
     throw InputError(requestedAt, fmt::format("cannot read {}: it is a directory", what));
   }
+  // A device or pipe (include "/dev/zero", "/dev/stdin") would be read forever or block.
+  if (fs::exists(path, error) && !fs::is_regular_file(path, error)) {
+    throw InputError(requestedAt, fmt::format("cannot read {}: it is not a regular file", what));
+  }
   std::ifstream stream(path, std::ios::binary);
   if (!stream) throw InputError(requestedAt, fmt::format("cannot open {}", what));
   std::ostringstream contents;
