@@ -190,6 +190,15 @@ int runCommand(const RunOptions& options) {
     progress.finish();
     std::cerr << "covcontact: error: " << error.what() << "\n";
     return kExitIo;
+  } catch (const InputError& error) {
+    // A deck function that fails only when evaluated (an expression that is not finite at some
+    // t): the converged steps stay in the file, which is closed with the reason.
+    progress.finish();
+    std::cerr << error.what() << "\n";
+    const SolverStatistics done = stepper.statistics();
+    writer.close({"input error", done.steps, done.iterations, done.cutbacks,
+                  std::chrono::duration<double>(Clock::now() - start).count(), error.what()});
+    return kExitInput;
   }
   std::signal(SIGINT, SIG_DFL);
   std::signal(SIGTERM, SIG_DFL);
