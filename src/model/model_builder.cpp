@@ -125,7 +125,9 @@ contact::ContactPairConfig pairConfig(const ContactSpec& spec) {
 contact::SurfaceMotion surfaceMotion(const RigidSurfaceSpec& spec) {
   std::vector<std::shared_ptr<ScalarFunction>> components(3);
   for (int c = 0; c < 3; ++c) {
-    if (spec.motion[c]) components[c] = makeFunction(*spec.motion[c]);
+    if (spec.motion[c]) {
+      components[c] = makeFunction(*spec.motion[c], FunctionVariables::TimeOnly);
+    }
   }
   return [components](double t) {
     Eigen::Vector3d offset = Eigen::Vector3d::Zero();

@@ -37,18 +37,23 @@ std::string parserMessage(const mu::Parser::exception_type& error, const std::st
 
 class ExpressionFunction final : public ScalarFunction {
  public:
-  explicit ExpressionFunction(const FunctionSpec& spec) : where_(spec.where) {
+  ExpressionFunction(const FunctionSpec& spec, FunctionVariables variables)
+      : where_(spec.where) {
     parser_.DefineVar("t", &t_);
-    parser_.DefineVar("x", &position_[0]);
-    parser_.DefineVar("y", &position_[1]);
-    parser_.DefineVar("z", &position_[2]);
+    const bool withPosition = variables == FunctionVariables::TimeAndPosition;
+    if (withPosition) {
+      parser_.DefineVar("x", &position_[0]);
+      parser_.DefineVar("y", &position_[1]);
+      parser_.DefineVar("z", &position_[2]);
+    }
     parser_.DefineConst("pi", std::numbers::pi);
     try {
       parser_.SetExpr(spec.expression);
       parser_.Eval();  // muParser parses lazily: force it now so errors point at the deck
     } catch (const mu::Parser::exception_type& error) {
-      throw InputError(where_, fmt::format("cannot parse expression \"{}\": {}", spec.expression,
-                                           parserMessage(error, spec.expression)));
+      throw InputError(where_, fmt::format("cannot parse expression \"{}\": {}{}", spec.expression,
+                                           parserMessage(error, spec.expression),
+                                           withPosition ? "" : " (a function of t only here)"));
     }
   }
 
@@ -115,9 +120,10 @@ class TableFunction final : public ScalarFunction {
 
 }  // namespace
 
-std::unique_ptr<ScalarFunction> makeFunction(const FunctionSpec& spec) {
+std::unique_ptr<ScalarFunction> makeFunction(const FunctionSpec& spec,
+                                             FunctionVariables variables) {
   if (spec.kind == FunctionSpec::Kind::Table) return std::make_unique<TableFunction>(spec);
-  return std::make_unique<ExpressionFunction>(spec);
+  return std::make_unique<ExpressionFunction>(spec, variables);
 }
 
 }  // namespace cc

@@ -18,7 +18,12 @@ class ScalarFunction {
   double operator()(double t) const { return (*this)(t, Eigen::Vector3d::Zero()); }
 };
 
+// Which variables an expression may use: prescribed displacements and loads see the reference
+// position, rigid-surface motions only the time (a position there has no meaning).
+enum class FunctionVariables { TimeAndPosition, TimeOnly };
+
 // Throws InputError (at spec.where) if the expression does not parse or uses unknown names.
-std::unique_ptr<ScalarFunction> makeFunction(const FunctionSpec& spec);
+std::unique_ptr<ScalarFunction> makeFunction(
+    const FunctionSpec& spec, FunctionVariables variables = FunctionVariables::TimeAndPosition);
 
 }  // namespace cc
