@@ -3,8 +3,9 @@
 #pragma once
 
 #include <Eigen/LU>
+#include <array>
 #include <limits>
-#include <memory>
+#include <string>
 #include <vector>
 
 #include "elements/kinematics_common.hpp"
@@ -115,8 +116,11 @@ class AssumedStrainKernel {
     if (!x.allFinite()) return tl::notFinite("current coordinates");
     const Eigen::Matrix3d centreJacobian = X * scheme_.centreGradients;
     const double centreDet = centreJacobian.determinant();
-    if (!(centreDet > 0.0))
-      return tl::invertedJacobian("reference (element centre)", -1, centreDet);
+    if (!(centreDet > 0.0)) {
+      return {ElementStatus::Code::InvertedJacobian,
+              "det J = " + std::to_string(centreDet) +
+                  " at the element centre in the reference configuration"};
+    }
     const Matrix6d centreToCartesian = strainTransformation(centreJacobian.inverse());
 
     const std::size_t numPoints = scheme_.samplingPoints.size();
