@@ -185,7 +185,10 @@ void Assembler::Impl::rebuildPattern(SystemMatrices& tangent, AssemblyTimings& t
                          samePattern(coupling, tangent.coupling);
   tangent.free = std::move(free);
   tangent.coupling = std::move(coupling);
-  if (!unchanged) tangent.patternVersion = nextPatternVersion++;
+  if (!unchanged) {
+    tangent.patternVersion = nextPatternVersion++;
+    ++timings.patternVersions;
+  }
   patternVersion = tangent.patternVersion;
 }
 
@@ -291,10 +294,15 @@ void throwIfNotFinite(const Eigen::VectorXd& force) {
 void Assembler::assemble(const AssemblyState& state, Eigen::VectorXd& force,
                          SystemMatrices* tangent) {
   ++timings_.assemblies;
+  const std::size_t count = impl_->contributions.size();
+  timings_.byContribution.resize(count);
   auto start = std::chrono::steady_clock::now();
-  for (Contribution* contribution : impl_->contributions) {
-    const LocalStatus status = contribution->prepare(state);
-    if (!status.ok) throw StepFailure(status.kind, contribution->name() + ": " + status.detail);
+  for (std::size_t c = 0; c < count; ++c) {
+    const auto contributionStart = std::chrono::steady_clock::now();
+    Contribution& contribution = *impl_->contributions[c];
+    const LocalStatus status = contribution.prepare(state);
+    timings_.byContribution[c].prepare += secondsSince(contributionStart);
+    if (!status.ok) throw StepFailure(status.kind, contribution.name() + ": " + status.detail);
   }
   timings_.prepare += secondsSince(start);
 
@@ -311,8 +319,10 @@ void Assembler::assemble(const AssemblyState& state, Eigen::VectorXd& force,
     tangent->coupling.coeffs().setZero();
   }
   bool symmetric = true;
-  for (std::size_t c = 0; c < impl_->contributions.size(); ++c) {
+  for (std::size_t c = 0; c < count; ++c) {
+    const auto contributionStart = std::chrono::steady_clock::now();
     impl_->evaluateContribution(c, state, force, tangent);
+    timings_.byContribution[c].evaluate += secondsSince(contributionStart);
     symmetric = symmetric && impl_->contributions[c]->tangentSymmetric();
   }
   if (tangent) tangent->symmetric = symmetric;

@@ -24,15 +24,25 @@ struct SystemMatrices {
   std::uint64_t patternVersion = 0;  // changes with the pattern; unique in the process, 0 = none
 };
 
+// Wall time of one contribution's parts, accumulated over calls.
+struct ContributionTimings {
+  double prepare = 0;   // Contribution::prepare
+  double evaluate = 0;  // its items' evaluation + scatter
+};
+
 // Wall time spent in the parts of an assembly and how often the expensive set-up ran,
 // accumulated over calls (for benchmarks and tests).
 struct AssemblyTimings {
-  double prepare = 0;     // Contribution::prepare (contact search, projection)
-  double evaluate = 0;    // item evaluation + scatter
-  double pattern = 0;     // pattern and coloring rebuilds
-  int assemblies = 0;     // calls of assemble()
-  int colorings = 0;      // item colorings computed (one per contribution topology change)
-  int patternBuilds = 0;  // sparsity pattern constructions
+  double prepare = 0;       // Contribution::prepare (contact search, projection)
+  double evaluate = 0;      // item evaluation + scatter
+  double pattern = 0;       // pattern and coloring rebuilds
+  int assemblies = 0;       // calls of assemble()
+  int colorings = 0;        // item colorings computed (one per contribution topology change)
+  int patternBuilds = 0;    // sparsity pattern constructions
+  int patternVersions = 0;  // constructions that changed the pattern (each needs an analysis)
+  // The same split per contribution, in the order the Assembler was given them (so that a
+  // benchmark can tell element from contact cost).
+  std::vector<ContributionTimings> byContribution;
 };
 
 class Assembler {
