@@ -3,6 +3,7 @@
 #include <cholmod.h>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
@@ -108,6 +109,7 @@ class CholmodSolver final : public LinearSolver {
       throw std::runtime_error(
           fmt::format("CHOLMOD factorization failed (status {})", common_.status));
     }
+    statistics_.largestFactorBytes = std::max(statistics_.largestFactorBytes, factorBytes());
     // cholmod_rcond is (min L_ii / max L_ii)^2, the pivot ratio of A = L D L^T.
     const double pivotRatio = cholmod_rcond(factor_, &common_);
     if (!(pivotRatio >= kSingularPivotRatio)) {
@@ -142,6 +144,15 @@ class CholmodSolver final : public LinearSolver {
   }
 
  private:
+  // Values plus integer indices of the factor (supernodal: x and s; simplicial: x and i).
+  double factorBytes() const {
+    const double indices = factor_->is_super ? static_cast<double>(factor_->ssize)
+                                             : static_cast<double>(factor_->nzmax);
+    const double values = factor_->is_super ? static_cast<double>(factor_->xsize)
+                                            : static_cast<double>(factor_->nzmax);
+    return values * sizeof(double) + indices * sizeof(int);
+  }
+
   cholmod_common common_{};
   cholmod_factor* factor_ = nullptr;
 };

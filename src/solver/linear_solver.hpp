@@ -21,6 +21,9 @@ struct LinearSolverStatistics {
   double analysisSeconds = 0;
   double factorizationSeconds = 0;
   double solveSeconds = 0;
+  // Size of the largest numeric factor so far (values and indices; L for CHOLMOD, L and U for
+  // UMFPACK): the memory a run cannot do without (benchmarks compare peak memory against it).
+  double largestFactorBytes = 0;
 
   LinearSolverStatistics& operator+=(const LinearSolverStatistics& other);
 };

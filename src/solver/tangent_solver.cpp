@@ -1,6 +1,7 @@
 // Backend selection with CHOLMOD -> UMFPACK fallback and per-backend symbolic analysis reuse.
 #include "solver/tangent_solver.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 #include "common/errors.hpp"
@@ -15,6 +16,7 @@ LinearSolverStatistics& LinearSolverStatistics::operator+=(const LinearSolverSta
   analysisSeconds += other.analysisSeconds;
   factorizationSeconds += other.factorizationSeconds;
   solveSeconds += other.solveSeconds;
+  largestFactorBytes = std::max(largestFactorBytes, other.largestFactorBytes);
   return *this;
 }
 

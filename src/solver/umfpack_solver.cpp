@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <umfpack.h>
 
+#include <algorithm>
 #include <chrono>
 #include <stdexcept>
 
@@ -80,6 +81,9 @@ class UmfpackSolver final : public LinearSolver {
       ++statistics_.failedFactorizations;
       throw std::runtime_error(fmt::format("UMFPACK factorization failed (status {})", status));
     }
+    // UMFPACK_NUMERIC_SIZE: the final size of the Numeric object (L, U, indices), in Units.
+    statistics_.largestFactorBytes = std::max(
+        statistics_.largestFactorBytes, info_[UMFPACK_NUMERIC_SIZE] * info_[UMFPACK_SIZE_OF_UNIT]);
     // UMFPACK_RCOND is min |U_ii| / max |U_ii| of the scaled factor.
     const double pivotRatio = info_[UMFPACK_RCOND];
     if (!(pivotRatio >= kSingularPivotRatio)) {
