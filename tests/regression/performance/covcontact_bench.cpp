@@ -1,0 +1,310 @@
+// covcontact_bench: runs a deck exactly as `covcontact run` does (parse, mesh, model, load
+// stepping, HDF5 results) and prints one JSON object with the cost split of the run: element
+// assembly, contact search, contact kernel, pattern rebuilds, linear-solver analysis,
+// factorization and solve, output, and the work counters. scripts/bench.py drives it.
+//
+//   covcontact_bench DECK [-o RESULTS.h5] [--threads N]
+//   covcontact_bench DECK --orderings [--threads N]
+// The second form assembles the deck's first tangent (contact included) and factorizes it with
+// CHOLMOD under each fill-reducing ordering (AMD, METIS, NESDIS), one JSON object per ordering.
+//   covcontact_bench DECK --search
+// The third form times only the contact search (ContactPair::prepare) of every pair: once at
+// the reference configuration (every point searched through the bucket grid), then at master
+// surfaces slid by a fraction of a segment per call (grid rebuilt, local walks to neighbours).
+#include <fmt/format.h>
+#include <omp.h>
+
+#include <chrono>
+#include <filesystem>
+#include <iostream>
+#include <string>
+
+#include "common/errors.hpp"
+#include "deck/deck_parser.hpp"
+#include "model/model.hpp"
+#include "output/results_writer.hpp"
+#include "solver/linear_solver.hpp"
+#include "solver/load_stepper.hpp"
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// The run command's observer without the progress line: writes every record and times it.
+class TimedWriterObserver : public cc::StepObserver {
+ public:
+  TimedWriterObserver(cc::Model& model, cc::ResultsWriter& writer, bool withStress)
+      : model_(model), writer_(writer), withStress_(withStress) {}
+
+  void iteration(const cc::IterationRecord& record) override {
+    const auto start = Clock::now();
+    writer_.appendIteration(record);
+    outputSeconds += secondsSince(start);
+  }
+  void cutback(const cc::CutbackRecord& record) override {
+    const auto start = Clock::now();
+    writer_.appendCutback(record);
+    outputSeconds += secondsSince(start);
+  }
+  void stepConverged(int step, double time, int iterations, int cutbacks,
+                     const Eigen::VectorXd& displacement, const Eigen::VectorXd& internalForce,
+                     bool writeOutput) override {
+    if (!writeOutput) return;
+    const auto start = Clock::now();
+    writer_.writeStep(model_.stepRecord(step, time, iterations, cutbacks, displacement,
+                                        internalForce, withStress_));
+    outputSeconds += secondsSince(start);
+    ++stepsWritten;
+  }
+
+  double outputSeconds = 0;
+  int stepsWritten = 0;
+
+ private:
+  cc::Model& model_;
+  cc::ResultsWriter& writer_;
+  bool withStress_;
+};
+
+cc::OutputSelection selectionOf(const cc::OutputSpec& output) {
+  cc::OutputSelection selection;
+  selection.displacement = output.displacement;
+  selection.reaction = output.reaction;
+  selection.stress = output.stress;
+  selection.contact = output.contact;
+  selection.csv = output.csv;
+  selection.xdmf = output.xdmf;
+  return selection;
+}
+
+struct Options {
+  std::string deck;
+  std::string output;
+  int threads = 0;
+  bool orderings = false;
+  bool search = false;
+};
+
+Options parseOptions(int argc, char** argv) {
+  Options options;
+  for (int k = 1; k < argc; ++k) {
+    const std::string argument = argv[k];
+    const bool hasValue = k + 1 < argc;
+    if (argument == "-o" && hasValue) {
+      options.output = argv[++k];
+    } else if (argument == "--orderings") {
+      options.orderings = true;
+    } else if (argument == "--search") {
+      options.search = true;
+    } else if (argument == "--threads" && hasValue) {
+      options.threads = std::stoi(argv[++k]);
+    } else if (options.deck.empty() && !argument.starts_with("-")) {
+      options.deck = argument;
+    } else {
+      throw std::invalid_argument("unexpected argument '" + argument + "'");
+    }
+  }
+  if (options.deck.empty()) {
+    throw std::invalid_argument(
+        "usage: covcontact_bench DECK [-o RESULTS.h5 | --orderings | --search] [--threads N]");
+  }
+  return options;
+}
+
+// Bytes of the mesh arrays (coordinates, element and face connectivity, node sets).
+double meshBytes(const cc::Mesh& mesh) {
+  double bytes = static_cast<double>(mesh.coordinates.size()) * sizeof(double);
+  for (const cc::ElementBlock& block : mesh.blocks) {
+    bytes += static_cast<double>(block.connectivity.size()) * sizeof(int);
+  }
+  for (const auto& [name, faces] : mesh.faceSets) {
+    bytes +=
+        static_cast<double>(faces.connectivity.size() + 2 * faces.ownerBlock.size()) * sizeof(int);
+  }
+  for (const auto& [name, set] : mesh.nodeSets) {
+    bytes += static_cast<double>(set.nodes.size()) * sizeof(int);
+  }
+  return bytes;
+}
+
+// Prepare and evaluate time of the element sets and of the contact pairs (the model hands the
+// assembler its element sets first, then its contact pairs).
+struct PartSeconds {
+  double elements = 0, contactSearch = 0, contactKernel = 0;
+};
+
+PartSeconds partsOf(const cc::Model& model) {
+  PartSeconds parts;
+  const auto& byContribution = model.assemblyTimings().byContribution;
+  const std::size_t elementSets = model.elementSets().size();
+  for (std::size_t c = 0; c < byContribution.size(); ++c) {
+    if (c < elementSets) {
+      parts.elements += byContribution[c].prepare + byContribution[c].evaluate;
+    } else {
+      parts.contactSearch += byContribution[c].prepare;
+      parts.contactKernel += byContribution[c].evaluate;
+    }
+  }
+  return parts;
+}
+
+// The tangent at the start of the first step (zero displacement, t = first step's end).
+cc::SystemMatrices firstTangent(cc::Model& model) {
+  const Eigen::Matrix3Xd& reference = model.referenceCoordinates();
+  cc::AssemblyState state;
+  state.time = model.spec().phases.front().dt;
+  state.previousTime = 0;
+  state.reference = &reference;
+  state.current = &reference;
+  state.previous = &reference;
+  cc::SystemMatrices tangent;
+  Eigen::VectorXd force;
+  model.assemble(state, force, &tangent);
+  return tangent;
+}
+
+int compareOrderings(const Options& options) {
+  if (options.threads > 0) omp_set_num_threads(options.threads);
+  std::unique_ptr<cc::Model> model = cc::buildModel(cc::parseDeck(options.deck));
+  const cc::SystemMatrices tangent = firstTangent(*model);
+  const Eigen::VectorXd rhs = Eigen::VectorXd::Ones(tangent.free.rows());
+  const std::pair<const char*, cc::FillOrdering> orderings[] = {
+      {"amd", cc::FillOrdering::Amd},
+      {"metis", cc::FillOrdering::Metis},
+      {"nesdis", cc::FillOrdering::NestedDissection}};
+  for (const auto& [name, ordering] : orderings) {
+    std::unique_ptr<cc::LinearSolver> solver = cc::makeCholmodSolver(ordering);
+    solver->analyzePattern(tangent.free);
+    solver->factorize(tangent.free);
+    const Eigen::VectorXd solution = solver->solve(rhs);
+    const cc::LinearSolverStatistics& statistics = solver->statistics();
+    fmt::print(
+        "{{\"deck\": \"{}\", \"ordering\": \"{}\", \"threads\": {}, \"free_dofs\": {}, "
+        "\"matrix_nonzeros\": {}, \"factor_bytes\": {:.0f}, \"analysis\": {:.6f}, "
+        "\"factorization\": {:.6f}, \"triangular_solve\": {:.6f}, \"residual\": {:.3g}}}\n",
+        options.deck, name, omp_get_max_threads(), tangent.free.rows(), tangent.free.nonZeros(),
+        statistics.largestFactorBytes, statistics.analysisSeconds, statistics.factorizationSeconds,
+        statistics.solveSeconds, (tangent.free * solution - rhs).norm() / rhs.norm());
+  }
+  return 0;
+}
+
+// Master-surface slides per timed search call, and the slide per call in segment sizes: enough
+// to move every point onto the next segment now and then, as sliding does.
+constexpr int kSearchSlides = 4;
+constexpr double kSlidePerCall = 0.3;
+
+int timeSearch(const Options& options) {
+  std::unique_ptr<cc::Model> model = cc::buildModel(cc::parseDeck(options.deck));
+  const Eigen::Matrix3Xd& reference = model->referenceCoordinates();
+  for (std::size_t p = 0; p < model->contactPairs().size(); ++p) {
+    cc::contact::ContactPair& pair = *model->contactPairs()[p];
+    const cc::FaceSet& master = model->mesh().faceSets.at(model->spec().contacts[p].master);
+    const double segment =
+        (reference.col(master.connectivity(0, 1)) - reference.col(master.connectivity(0, 0)))
+            .norm();
+    Eigen::Matrix3Xd current = reference;
+    cc::AssemblyState state;
+    state.reference = &reference;
+    state.previous = &reference;
+    state.current = &current;
+    auto start = Clock::now();
+    pair.prepare(state);
+    const double initialSeconds = secondsSince(start);
+    double slideSeconds = 0;
+    for (int slide = 1; slide <= kSearchSlides; ++slide) {
+      for (Eigen::Index k = 0; k < master.connectivity.size(); ++k) {
+        current(0, master.connectivity.data()[k]) =
+            reference(0, master.connectivity.data()[k]) + slide * kSlidePerCall * segment;
+      }
+      state.previousTime = state.time;
+      state.time = slide;
+      start = Clock::now();
+      pair.prepare(state);
+      slideSeconds += secondsSince(start);
+    }
+    fmt::print(
+        "{{\"deck\": \"{}\", \"pair\": \"{}\", \"contact_points\": {}, "
+        "\"master_segments\": {}, \"initial_search\": {:.6f}, \"slide_search\": {:.6f}}}\n",
+        options.deck, pair.name(), pair.pointCount(), master.connectivity.rows(), initialSeconds,
+        slideSeconds / kSearchSlides);
+  }
+  return 0;
+}
+
+int run(const Options& options) {
+  const auto start = Clock::now();
+  if (options.threads > 0) omp_set_num_threads(options.threads);
+  const cc::ProblemSpec spec = cc::parseDeck(options.deck);
+  const std::string path = options.output.empty()
+                               ? std::filesystem::path(options.deck).stem().string() + ".h5"
+                               : options.output;
+  const cc::OutputSelection selection = selectionOf(spec.output);
+  std::unique_ptr<cc::Model> model = cc::buildModel(spec);
+  const double setupSeconds = secondsSince(start);
+
+  cc::ResultsWriter writer;
+  auto outputStart = Clock::now();
+  writer.open(path, {spec.deckText, options.deck, spec.title, COVCONTACT_VERSION, options.deck},
+              model->mesh(), selection);
+  double openCloseSeconds = secondsSince(outputStart);
+  TimedWriterObserver observer(*model, writer, selection.stress);
+  cc::LoadStepper stepper(*model, observer, model->spec().phases);
+  const auto solveStart = Clock::now();
+  const cc::RunSummary summary = stepper.run();
+  const double solveSeconds = secondsSince(solveStart);
+  outputStart = Clock::now();
+  writer.close({summary.outcome == cc::RunSummary::Outcome::Completed ? "completed" : "failed",
+                summary.stepsConverged, summary.totalIterations, summary.totalCutbacks,
+                secondsSince(start), summary.message});
+  openCloseSeconds += secondsSince(outputStart);
+  const double totalSeconds = secondsSince(start);
+
+  const cc::SolverStatistics statistics = stepper.statistics();
+  const cc::AssemblyTimings& assembly = model->assemblyTimings();
+  const PartSeconds parts = partsOf(*model);
+  const cc::LinearSolverStatistics& linear = statistics.linear;
+  fmt::print(
+      "{{\"deck\": \"{}\", \"completed\": {}, \"message\": \"{}\", \"threads\": {}, "
+      "\"nodes\": {}, \"elements\": {}, \"dofs\": {}, \"free_dofs\": {}, \"contact_points\": {}, "
+      "\"steps\": {}, \"iterations\": {}, \"cutbacks\": {}, \"assemblies\": {}, "
+      "\"factor_bytes\": {:.0f}, \"mesh_bytes\": {:.0f}, \"analyses\": {}, \"factorizations\": {}, "
+      "\"solves\": {}, "
+      "\"cholesky_fallbacks\": {}, \"pattern_builds\": {}, \"pattern_versions\": {}, "
+      "\"colorings\": {}, \"steps_written\": {}, "
+      "\"seconds\": {{\"total\": {:.6f}, \"setup\": {:.6f}, \"solve_loop\": {:.6f}, "
+      "\"element_assembly\": {:.6f}, \"contact_search\": {:.6f}, \"contact_kernel\": {:.6f}, "
+      "\"pattern\": {:.6f}, \"assembly_total\": {:.6f}, \"analysis\": {:.6f}, "
+      "\"factorization\": {:.6f}, \"triangular_solve\": {:.6f}, \"output\": {:.6f}}}}}\n",
+      options.deck, summary.outcome == cc::RunSummary::Outcome::Completed ? "true" : "false",
+      summary.message, omp_get_max_threads(), model->mesh().numNodes(), model->elementCount(),
+      3 * model->mesh().numNodes(), model->dofMap().numFree(), model->contactPointCount(),
+      summary.stepsConverged, summary.totalIterations, summary.totalCutbacks, statistics.assemblies,
+      linear.largestFactorBytes, meshBytes(model->mesh()), linear.analyses, linear.factorizations,
+      linear.solves, statistics.choleskyFallbacks, assembly.patternBuilds, assembly.patternVersions,
+      assembly.colorings, observer.stepsWritten, totalSeconds, setupSeconds, solveSeconds,
+      parts.elements, parts.contactSearch, parts.contactKernel, assembly.pattern,
+      statistics.assemblySeconds, linear.analysisSeconds, linear.factorizationSeconds,
+      linear.solveSeconds, observer.outputSeconds + openCloseSeconds);
+  return summary.outcome == cc::RunSummary::Outcome::Completed ? 0 : 1;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    const Options options = parseOptions(argc, argv);
+    if (options.orderings) return compareOrderings(options);
+    return options.search ? timeSearch(options) : run(options);
+  } catch (const cc::InputError& error) {
+    std::cerr << error.what() << "\n";
+    return 2;
+  } catch (const std::exception& error) {
+    std::cerr << "covcontact_bench: " << error.what() << "\n";
+    return 3;
+  }
+}
