@@ -10,6 +10,8 @@ packages=(
   libopenblas0-serial
   python3-h5py python3-matplotlib python3-numpy
   paraview xvfb hdf5-tools
+  # scripts/bench.py compares with CalculiX; tests count instructions with valgrind
+  calculix-ccx valgrind
 )
 
 sudo_cmd=()
