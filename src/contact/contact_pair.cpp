@@ -294,7 +294,8 @@ LocalStatus ContactPair::evaluate(std::size_t item, const AssemblyState& state,
           fmt::format("contact pair '{}', point {}: tangent is not finite", config_.name, item));
     }
     point.trial.symmetric =
-        config_.tangentMode == ContactSpec::TangentMode::Paper
+        config_.tangentMode == ContactSpec::TangentMode::Paper &&
+                setup.kind != PointKind::SegmentToAnalytical  // STAS: n x m is unsymmetric
             ? contact::tangentSymmetric(e.response.state, config_.parts)
             : (*tangent - tangent->transpose()).norm() <= kSymmetryTolerance * tangent->norm();
   }

@@ -59,8 +59,16 @@ void pointTangent(const PointSetup& setup, const NodeMatrix<double>& nodes,
     return;
   }
   if (mode == ContactSpec::TangentMode::Paper) {
-    paperTangent(evaluation.kinematics, evaluation.response, setup.layout, evaluation.xi,
-                 setup.law, parts, K);
+    const PointKinematics<double>& kin = evaluation.kinematics;
+    Eigen::Vector3d gapDirection = kin.frame.normal;
+    if (setup.kind == PointKind::SegmentToAnalytical) {
+      // Eq. (117) linearized: the rigid point slides along the surface (normal nu), so
+      // delta g = -(delta rho) . nu / (n . nu) up to the g delta n terms.
+      const Eigen::Vector3d nu = setup.surface->outwardNormal(kin.slavePoint - setup.surfaceOffset);
+      gapDirection = nu / kin.frame.normal.dot(nu);
+    }
+    paperTangent(kin, evaluation.response, setup.layout, evaluation.xi, setup.law, parts,
+                 gapDirection, K);
     return;
   }
   if (setup.kind == PointKind::SegmentToAnalytical) {

@@ -45,13 +45,15 @@ void addSymmetricPair(MatrixXd& K, double scale, const VectorXd& a, const Vector
 }  // namespace
 
 TangentContext makeTangentContext(const PointKinematics<double>& kin, const PointLayout& layout,
-                                  const Eigen::Vector2d& xi) {
+                                  const Eigen::Vector2d& xi, const Eigen::Vector3d& gapDirection) {
   const SurfaceFrame<double>& f = kin.frame;
   const SurfaceShape<double> shape = surfaceShape(layout.masterType, xi[0], xi[1]);
   TangentContext c;
   c.frame = &kin.frame;
   c.weight = kin.weight;
   c.An = positionTranspose(kin, layout, f.normal);
+  c.Agap = positionTranspose(kin, layout, gapDirection);
+  c.fixedMasterPoint = layout.slaveCount == 0;
   for (int i = 0; i < 2; ++i) {
     c.Arho[i] = positionTranspose(kin, layout, f.rhoCov[i]);
     c.ArhoContra[i] = positionTranspose(kin, layout, f.rhoContra[i]);
@@ -63,9 +65,9 @@ TangentContext makeTangentContext(const PointKinematics<double>& kin, const Poin
   return c;
 }
 
-// Eq. (83): eps_N (delta r_s - delta rho) . (n x n) (v_s - v).
+// Eq. (83): eps_N (delta r_s - delta rho) . (n x m) (v_s - v), m = n except for STAS.
 void normalMain(const TangentContext& c, double penaltyNormal, MatrixXd& K) {
-  K.noalias() += (c.weight * penaltyNormal) * c.An * c.An.transpose();
+  K.noalias() += (c.weight * penaltyNormal) * c.An * c.Agap.transpose();
 }
 
 // Eq. (83a): -eps_N g [delta rho_,j . a^ij (n x rho_i)(v_s - v) + (.) . a^ij (rho_j x n) v_,i].
@@ -73,8 +75,11 @@ void normalRotational(const TangentContext& c, double penaltyNormal, double gap,
   const Eigen::Matrix2d& aInv = c.frame->inverseMetric;
   for (int i = 0; i < 2; ++i) {
     for (int j = 0; j < 2; ++j) {
-      K.noalias() -= (c.weight * penaltyNormal * gap * aInv(i, j)) *
-                     (c.Ajn[j] * c.Arho[i].transpose() + c.Arho[j] * c.Ajn[i].transpose());
+      // STAS (xi fixed): only N delta n, delta n = -a^ij rho_i (n . delta rho_,j); the other
+      // half comes from delta xi of the projection (eq. (80)).
+      const double scale = c.weight * penaltyNormal * gap * aInv(i, j);
+      if (!c.fixedMasterPoint) K.noalias() -= scale * c.Ajn[j] * c.Arho[i].transpose();
+      K.noalias() -= scale * c.Arho[j] * c.Ajn[i].transpose();
     }
   }
 }
@@ -103,7 +108,14 @@ void tractionRotational(const TangentContext& c, const Eigen::Vector2d& traction
   const Eigen::Vector2d tractionContra = c.frame->inverseMetric * traction;  // T^l = a^il T_i
   for (int j = 0; j < 2; ++j) {
     const VectorXd AjT = tractionContra[0] * c.Ajrho[j][0] + tractionContra[1] * c.Ajrho[j][1];
-    addSymmetricPair(K, c.weight, c.ArhoContra[j], AjT);
+    if (c.fixedMasterPoint) {
+      // STAS (xi fixed): only T_i delta rho^i, with delta rho^i = -(rho^i . delta rho_,k) rho^k
+      // + a^ij (n . delta rho_,j) n.
+      K.noalias() += c.weight * c.ArhoContra[j] * AjT.transpose();
+      K.noalias() -= (c.weight * tractionContra[j]) * c.An * c.Ajn[j].transpose();
+    } else {
+      addSymmetricPair(K, c.weight, c.ArhoContra[j], AjT);
+    }
   }
 }
 
@@ -119,7 +131,7 @@ void slideConstitutive(const TangentContext& c, const LawParameters& law, double
                        const TangentialTraction<double>& tangential, MatrixXd& K) {
   const Eigen::Vector2d direction = tangential.trialCovariant / tangential.trialNorm;
   const VectorXd Ae = direction[0] * c.ArhoContra[0] + direction[1] * c.ArhoContra[1];
-  K.noalias() += (c.weight * law.friction * law.penaltyNormal) * Ae * c.An.transpose();
+  K.noalias() += (c.weight * law.friction * law.penaltyNormal) * Ae * c.Agap.transpose();
   const double scale =
       c.weight * law.penaltyTangential * law.friction * std::abs(normal) / tangential.trialNorm;
   for (int i = 0; i < 2; ++i) K.noalias() += scale * c.ArhoContra[i] * c.Arho[i].transpose();
@@ -154,9 +166,15 @@ void slideUnsymmetricCurvature(const TangentContext& c, const LawParameters& law
 void paperTangent(const PointKinematics<double>& kin, const PointResponse<double>& response,
                   const PointLayout& layout, const Eigen::Vector2d& xi, const LawParameters& law,
                   const TangentParts& parts, MatrixXd& K) {
+  paperTangent(kin, response, layout, xi, law, parts, kin.frame.normal, K);
+}
+
+void paperTangent(const PointKinematics<double>& kin, const PointResponse<double>& response,
+                  const PointLayout& layout, const Eigen::Vector2d& xi, const LawParameters& law,
+                  const TangentParts& parts, const Eigen::Vector3d& gapDirection, MatrixXd& K) {
   K.setZero(3 * layout.nodeCount, 3 * layout.nodeCount);
   if (response.state == PointState::Open) return;
-  const TangentContext c = makeTangentContext(kin, layout, xi);
+  const TangentContext c = makeTangentContext(kin, layout, xi, gapDirection);
   // Flat masters pay nothing for the curvature parts (h_ij = 0 up to round-off), and
   // parallelogram segments nothing for the Christoffel part of (107e).
   const double scale = kin.frame.metric.norm();

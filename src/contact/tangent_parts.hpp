@@ -21,14 +21,20 @@ struct TangentContext {
   const SurfaceFrame<double>* frame = nullptr;
   double weight = 0;
   Eigen::VectorXd An;                                // A^T n
+  Eigen::VectorXd Agap;                              // A^T m, delta g = (A delta x) . m
+  bool fixedMasterPoint = false;                     // STAS: xi fixed, delta xi = 0
   std::array<Eigen::VectorXd, 2> Arho;               // A^T rho_i
   std::array<Eigen::VectorXd, 2> ArhoContra;         // A^T rho^i
   std::array<Eigen::VectorXd, 2> Ajn;                // A_j^T n
   std::array<std::array<Eigen::VectorXd, 2>, 2> Ajrho;  // [j][i] = A_j^T rho_i
 };
 
+// gapDirection m: delta g = (delta r_s - delta rho) . m in the main parts. NTS and STS: m = n
+// (the slave point is material, eq. (80)). STAS: the rigid surface point slides along the
+// surface as the master point moves, and eq. (117) linearized gives m = nu / (n . nu) with nu the
+// rigid surface's normal there (m = n when the master segment is parallel to the surface).
 TangentContext makeTangentContext(const PointKinematics<double>& kin, const PointLayout& layout,
-                                  const Eigen::Vector2d& xi);
+                                  const Eigen::Vector2d& xi, const Eigen::Vector3d& gapDirection);
 
 void normalMain(const TangentContext& c, double penaltyNormal, Eigen::MatrixXd& K);
 void normalRotational(const TangentContext& c, double penaltyNormal, double gap,
@@ -51,6 +57,11 @@ void slideUnsymmetricCurvature(const TangentContext& c, const LawParameters& law
 void paperTangent(const PointKinematics<double>& kin, const PointResponse<double>& response,
                   const PointLayout& layout, const Eigen::Vector2d& xi, const LawParameters& law,
                   const TangentParts& parts, Eigen::MatrixXd& K);
+// The same with the gap direction m of makeTangentContext (STAS).
+void paperTangent(const PointKinematics<double>& kin, const PointResponse<double>& response,
+                  const PointLayout& layout, const Eigen::Vector2d& xi, const LawParameters& law,
+                  const TangentParts& parts, const Eigen::Vector3d& gapDirection,
+                  Eigen::MatrixXd& K);
 
 // Whether the selected parts give a symmetric matrix in this state (slide (107) and (107e) do
 // not; everything else does).

@@ -401,10 +401,14 @@ TEST(PaperTangent, TangentialPartsDifferFromDiscreteAlgorithmAtFirstOrderInIncre
 }
 
 // STAS measures the gap along the master normal, eq. (117), and integrates at fixed master Gauss
-// points; the paper's parts treat the rigid point like a projected slave point. Where the rigid
-// surface is tilted against the master segment (a faceted master on a curved rigid surface)
-// this leaves a difference proportional to the tilt angle that no increment removes.
-TEST(PaperTangent, AnalyticalSurfaceDifferenceGrowsWithTiltAtFirstOrder) {
+// points: the rigid point slides along the surface, so delta g = -(delta rho) . nu / (n . nu)
+// (nu: the rigid surface's normal), and with xi fixed only the N delta n and T_i delta rho^i
+// halves of the rotational parts remain. Where the rigid surface is tilted against the master
+// segment (a faceted master on a curved rigid surface) the paper's parts must therefore stay as
+// close to the exact tangent as on a parallel plane: the remaining difference is the first-order
+// one in the increment, not one proportional to the tilt (treating the rigid point like a
+// projected slave point, as before, doubled the difference from tilt 0.02 to 0.04).
+TEST(PaperTangent, AnalyticalSurfaceDifferenceDoesNotGrowWithTilt) {
   double errors[2];
   const double tilts[2] = {0.04, 0.02};
   const double s = 1e-4;
@@ -416,8 +420,7 @@ TEST(PaperTangent, AnalyticalSurfaceDifferenceGrowsWithTiltAtFirstOrder) {
                               finiteDifferenceTangent(c));
   }
   const double order = std::log2(errors[0] / errors[1]);
-  EXPECT_GT(order, 0.8) << errors[0] << " " << errors[1];
-  EXPECT_LT(order, 1.3) << errors[0] << " " << errors[1];
+  EXPECT_LT(std::abs(order), 0.2) << errors[0] << " " << errors[1];
 }
 
 }  // namespace
