@@ -37,6 +37,40 @@ void expectCompleted(const VerifiedRun& verified) {
       << verified.run.summary.message;
 }
 
+// Hertz sphere targets: P(delta) within 2%, contact radius within one element h, peak pressure
+// within 3% (the largest point pressure; the centre point's pressure is held to the same 3%).
+void expectHertzSphereTargets(const VerifiedRun& r, double h) {
+  EXPECT_LT(std::abs(r["contact:hertz:force:z"].relativeError), 0.02);
+  EXPECT_LT(std::abs(r["contact:hertz:radius"].error), h);
+  EXPECT_LT(std::abs(r["contact:hertz:peak_pressure"].relativeError), 0.03);
+  EXPECT_LT(std::abs(r["contact:hertz:centre_pressure"].relativeError), 0.03);
+}
+
+TEST(VerificationHertz, RigidSphereStasOnTheDeckMesh) {
+  // The deck's mesh (m = 8, h = 0.19 = a/5.3) takes 11 s of one core. Measured: P(delta) -0.45%,
+  // a -4.7% (0.25 h), p0 -0.75%.
+  const VerifiedRun r = runVerificationDeck(kDecks + "hertz_rigid_sphere.deck");
+  expectCompleted(r);
+  expectHertzSphereTargets(r, elementSize(8));
+}
+
+TEST(VerificationHertz, ElasticSphereStsRadiusAndCentrePressure) {
+  // The deck's mesh (m = 8) takes 102 s of one core (P(delta) -1.5% there), so this runs m = 6
+  // (46 s; the finest level under a minute). Measured at m = 6: a -3.9% (0.15 h), p0 at the centre
+  // +0.23%, both targets met. Missed there (not asserted, reported in
+  // docs/verification/accuracy.md): P(delta) -2.04% (target 2%; -4.6%, -3.0%, -2.0% at m = 3, 4, 6:
+  // the two bodies' hex8 stiffness) and the largest point pressure +22% (target 3%: single STS
+  // points near the contact edge of the faceted sphere carry pressure spikes; the centre pressure
+  // is exact to 0.3%).
+  const VerifiedRun r = runVerificationDeck(kDecks + "hertz_elastic_sphere.deck", meshLevel(6, 8));
+  expectCompleted(r);
+  EXPECT_LT(std::abs(r["contact:hertz:radius"].error), elementSize(6));
+  EXPECT_LT(std::abs(r["contact:hertz:centre_pressure"].relativeError), 0.03);
+  RecordProperty("force_relative_error", std::to_string(r["contact:hertz:force:z"].relativeError));
+  RecordProperty("peak_pressure_relative_error",
+                 std::to_string(r["contact:hertz:peak_pressure"].relativeError));
+}
+
 TEST(VerificationHertz, RigidCylinderStasOnTheDeckMesh) {
   // The deck's mesh (m = 16, h = 0.094) runs in about a second. Measured: b -4.3% (0.45 h),
   // p0 -0.41% at the centre and as the largest point pressure.
@@ -63,6 +97,24 @@ TEST(VerificationCattaneoMindlin, CylinderStickHalfWidthWithinOneElementOfTheDec
   EXPECT_GT(ratio, 0.5);
   EXPECT_LT(ratio, 0.8);
   EXPECT_LT(std::abs(r["contact:cm:centre_pressure"].relativeError), 0.03);
+}
+
+TEST(VerificationCattaneoMindlin, SphereStickRadiusWithinOneElementOfTheDeckMesh) {
+  // The deck's mesh (m = 4, 49 s of one core) gives c -12% = 0.24 h; here m = 3 (30 s) gives
+  // c -24% = 0.18, inside the deck mesh's element width h(4) = 0.375 (and its own h(3) = 0.5).
+  const VerifiedRun r =
+      runVerificationDeck(kDecks + "cattaneo_mindlin_sphere.deck", meshLevel(3, 4));
+  expectCompleted(r);
+  const auto& stick = r["contact:cm:stick_radius"];
+  EXPECT_LT(std::abs(stick.error), elementSize(4));
+  // The tangential load reached the partial-slip range: c/a = (1 - Q/(mu P))^(1/3) ~ 0.74.
+  const double ratio =
+      stick.samples.back().reference / r["contact:cm:radius"].samples.back().reference;
+  EXPECT_GT(ratio, 0.5);
+  EXPECT_LT(ratio, 0.9);
+  // Tangential compliance (Q at the measured tangential approach): -4.9% at m = 3, no target.
+  RecordProperty("tangential_force_relative_error",
+                 std::to_string(r["contact:cm:force:x"].relativeError));
 }
 
 TEST(VerificationPatchTest, StsOnMatchingMeshesIsUniform) {
