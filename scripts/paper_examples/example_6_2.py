@@ -10,7 +10,7 @@ import h5py
 import matplotlib
 import numpy as np
 
-from .common import iterations_per_step, markdown_table
+from .common import iterations_per_step, markdown_table, residual_variant
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
@@ -31,7 +31,6 @@ PAPER_TABLE4 = {
     "main": [(1, 9, 6, 54), (10, 12, 7, 75), (13, 15, 8, 99), (15, 17, 9, 126),
              (18, 20, 10, 156)],
 }
-RESIDUAL_TOLERANCE = 1e-10
 
 
 def reproduce(context):
@@ -51,19 +50,6 @@ def reproduce(context):
     walls = {name: seconds for name, seconds in context.wall_seconds.items()
              if name.startswith("parabolic_block_6_2")}
     write_generated(context.docs / "example_6_2_results.md", findings, tables, walls)
-
-
-def residual_variant(deck: Path, work: Path) -> Path:
-    """The same deck judged by the relative residual <= 1e-10 (written into the work folder)."""
-    text = deck.read_text()
-    text = text.replace('include "', f'include "{deck.parent}/')
-    newton = f"  newton converge=residual residual={RESIDUAL_TOLERANCE}\n"
-    text = text.replace("\nsolve\n", "\nsolve\n" + newton)
-    variant = work / f"{deck.stem}_residual.deck"
-    if not variant.exists() or variant.read_text() != text:
-        work.mkdir(parents=True, exist_ok=True)
-        variant.write_text(text)
-    return variant
 
 
 class Surface:
