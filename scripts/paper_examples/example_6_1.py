@@ -4,7 +4,6 @@ Runs input/paper/sliding_block_6_1a.deck (small steps, stick/slip zone) and the 
 sliding_block_6_1b_*.deck (large steps, tangent full/main/exact), each also with the relative
 residual criterion, and writes docs/paper/example_6_1.md with the figures and tables.
 """
-import re
 from pathlib import Path
 
 import h5py

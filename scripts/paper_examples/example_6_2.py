@@ -4,7 +4,6 @@ Runs input/paper/parabolic_block_6_2{a,b,c_*}.deck and writes to docs/paper/ the
 Figs. 9, 10, 12 and 13, Table 4 (paper's numbers beside ours, plus the exact tangent, at the
 relative energy criterion and at relative residual <= 1e-10) and example_6_2.md's generated part.
 """
-from pathlib import Path
 
 import h5py
 import matplotlib
