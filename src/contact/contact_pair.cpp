@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <limits>
 #include <map>
+#include <cstdlib>  // NTSDEBUG
 
 #include "contact/tangent_parts.hpp"
 #include "fem/quadrature.hpp"
@@ -39,6 +40,11 @@ constexpr double kSymmetryTolerance = 1e-12;
 // Integration rule for the NTS tributary areas (exact for the Quad9 shape functions on flat
 // faces).
 constexpr int kTributaryAreaPoints = 3;
+// Reach of the global search, in master segment sizes: a point that lost its segment is within
+// one segment of its new one (gap and slip of a step are smaller than a segment). Before this
+// was relative, the first search used a reach of one length unit, which on a fine mesh put
+// hundreds of segments in every grid cell (issue 8).
+constexpr double kSearchReachInSegments = 1.0;
 
 }  // namespace
 
@@ -163,7 +169,7 @@ Eigen::Vector3d ContactPair::slavePosition(const Point& point, const Eigen::Matr
 
 void ContactPair::searchSegments(const Eigen::Matrix3Xd& x, double time) {
   if (gridTime_ != time) {
-    master_.buildSearchGrid(x, master_.typicalSegmentSize());
+    master_.buildSearchGrid(x, kSearchReachInSegments);
     gridTime_ = time;
   }
   bool changed = false;
@@ -224,6 +230,13 @@ LocalStatus ContactPair::prepare(const AssemblyState& state) {
     return LocalStatus::success();
   }
   searchSegments(*state.current, state.time);
+  if (std::getenv("CC_NTS_DEBUG")) {  // NTSDEBUG
+    for (std::size_t i = 0; i < points_.size(); ++i) {  // NTSDEBUG
+      const Point& p = points_[i];  // NTSDEBUG
+      const Eigen::Vector3d r = slavePosition(p, *state.current);  // NTSDEBUG
+      fmt::print(stderr, "DBG t={} pt={} x={:.6f} y={:.3f} seg={} xi=({:.6f},{:.6f}) prevTrial state={} gap={:.6e} N={:.4e}\n", state.time, i, r.x(), r.y(), p.segment, p.xi[0], p.xi[1], (int)p.trial.state, p.trial.gap, p.trial.normalTraction);  // NTSDEBUG
+    }  // NTSDEBUG
+  }  // NTSDEBUG
   return LocalStatus::success();
 }
 

@@ -91,7 +91,8 @@ Eigen::Vector3i MasterSurface::cellOf(const Eigen::Vector3d& point) const {
   return ((point - gridOrigin_) / cellSize_).array().floor().cast<int>();
 }
 
-void MasterSurface::buildSearchGrid(const Eigen::Matrix3Xd& coordinates, double reach) {
+void MasterSurface::buildSearchGrid(const Eigen::Matrix3Xd& coordinates,
+                                    double reachInSegments) {
   cells_.clear();
   if (segmentCount() == 0) return;
   std::vector<Eigen::AlignedBox3d> boxes(segmentCount());
@@ -103,7 +104,7 @@ void MasterSurface::buildSearchGrid(const Eigen::Matrix3Xd& coordinates, double 
   typicalSize_ = sizeSum / segmentCount();
   // Boxes grow by the reach and by a fraction of the segment size (curved Quad9 segments bulge
   // beyond their nodes' hull only slightly).
-  const double inflation = reach + 0.25 * typicalSize_;
+  const double inflation = (reachInSegments + 0.25) * typicalSize_;
   cellSize_ = typicalSize_ + 2 * inflation;
   gridOrigin_ = coordinates.col(segments_(0, 0));
   for (int s = 0; s < segmentCount(); ++s) {

@@ -36,8 +36,10 @@ class MasterSurface {
   NodeMatrix<double> segmentNodes(int segment, const Eigen::Matrix3Xd& coordinates) const;
 
   // Rebuilds the bucket grid for the current coordinates (once per step or when points get
-  // lost); `reach` inflates segment boxes (expected maximum gap + slip per step).
-  void buildSearchGrid(const Eigen::Matrix3Xd& coordinates, double reach);
+  // lost); segment boxes grow by `reachInSegments` times the mean segment size (expected
+  // maximum gap + slip per step). Relative to the segments, so that a cell holds a bounded
+  // number of them however fine the mesh: the search stays O(1) per point.
+  void buildSearchGrid(const Eigen::Matrix3Xd& coordinates, double reachInSegments);
 
   // Local search: project on `start`, walk to edge neighbours while the parameter leaves the
   // segment. Returns a segment only if the point projects inside one.
