@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <limits>
 #include <map>
-#include <cstdlib>  // NTSDEBUG
 
 #include "contact/tangent_parts.hpp"
 #include "fem/quadrature.hpp"
@@ -230,13 +229,6 @@ LocalStatus ContactPair::prepare(const AssemblyState& state) {
     return LocalStatus::success();
   }
   searchSegments(*state.current, state.time);
-  if (std::getenv("CC_NTS_DEBUG")) {  // NTSDEBUG
-    for (std::size_t i = 0; i < points_.size(); ++i) {  // NTSDEBUG
-      const Point& p = points_[i];  // NTSDEBUG
-      const Eigen::Vector3d r = slavePosition(p, *state.current);  // NTSDEBUG
-      fmt::print(stderr, "DBG t={} pt={} x={:.6f} y={:.3f} seg={} xi=({:.6f},{:.6f}) prevTrial state={} gap={:.6e} N={:.4e}\n", state.time, i, r.x(), r.y(), p.segment, p.xi[0], p.xi[1], (int)p.trial.state, p.trial.gap, p.trial.normalTraction);  // NTSDEBUG
-    }  // NTSDEBUG
-  }  // NTSDEBUG
   return LocalStatus::success();
 }
 
