@@ -83,6 +83,7 @@ class CholmodSolver final : public LinearSolver {
       throw std::runtime_error(fmt::format("CHOLMOD analysis failed (status {})", common_.status));
     }
     ++statistics_.analyses;
+    statistics_.largestFactorFlops = std::max(statistics_.largestFactorFlops, common_.fl);
     statistics_.analysisSeconds += secondsSince(start);
   }
 

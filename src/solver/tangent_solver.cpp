@@ -17,6 +17,7 @@ LinearSolverStatistics& LinearSolverStatistics::operator+=(const LinearSolverSta
   factorizationSeconds += other.factorizationSeconds;
   solveSeconds += other.solveSeconds;
   largestFactorBytes = std::max(largestFactorBytes, other.largestFactorBytes);
+  largestFactorFlops = std::max(largestFactorFlops, other.largestFactorFlops);
   return *this;
 }
 

@@ -81,6 +81,8 @@ class UmfpackSolver final : public LinearSolver {
       ++statistics_.failedFactorizations;
       throw std::runtime_error(fmt::format("UMFPACK factorization failed (status {})", status));
     }
+    statistics_.largestFactorFlops =
+        std::max(statistics_.largestFactorFlops, info_[UMFPACK_FLOPS]);
     // UMFPACK_NUMERIC_SIZE: the final size of the Numeric object (L, U, indices), in Units.
     statistics_.largestFactorBytes = std::max(
         statistics_.largestFactorBytes, info_[UMFPACK_NUMERIC_SIZE] * info_[UMFPACK_SIZE_OF_UNIT]);
