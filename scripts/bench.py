@@ -87,8 +87,8 @@ BLAS_VARIANTS = {
 }
 BLAS_SIZES = ["57k", "125k"]
 # The 1 vs 2 threads comparison (--threads-study): sizes large enough that assembly dominates
-# thread start-up, small enough to rerun in a few minutes on an idle machine.
-THREADS_STUDY_SIZES = ["57k", "125k"]
+# thread start-up, small enough to rerun in a few minutes on an idle machine (~3 min).
+THREADS_STUDY_SIZES = ["20k", "57k"]
 
 LIMIT_SECONDS = 15 * 60
 LIMIT_BYTES = 24 * 2**30
@@ -152,6 +152,10 @@ def main():
     parser.add_argument("--only", default="scaling,orderings,blas,search,calculix",
                         help="parts to run (comma separated)")
     parser.add_argument("--sizes", help="scaling sizes to run (comma separated names)")
+    parser.add_argument("--search-sizes", default=",".join(n for n, _ in SEARCH_SIZES),
+                        help="sizes of the contact-search series (comma separated names)")
+    parser.add_argument("--calculix-meshes", default=",".join(n for n, _ in CALCULIX_SIZES),
+                        help="meshes of the CalculiX comparison (comma separated names)")
     parser.add_argument("--threads", default="1", help="thread counts of the scaling runs")
     parser.add_argument("--threads-study", action="store_true",
                         help="only the 1 vs 2 threads runs (THREADS_STUDY_SIZES; a few minutes "
@@ -176,7 +180,8 @@ def main():
         runner = bench_runs.Runner(args.build, args.work, LIMIT_SECONDS, LIMIT_BYTES)
         parts = args.only.split(",")
         sizes = [s for s in SCALING_SIZES if not args.sizes or s[0] in args.sizes.split(",")]
-        search_sizes, calculix_sizes = SEARCH_SIZES, CALCULIX_SIZES
+        search_sizes = [c for c in SEARCH_SIZES if c[0] in args.search_sizes.split(",")]
+        calculix_sizes = [c for c in CALCULIX_SIZES if c[0] in args.calculix_meshes.split(",")]
         if args.quick:
             sizes, search_sizes, calculix_sizes = sizes[:1], SEARCH_SIZES[:1], CALCULIX_SIZES[:1]
         threads = [int(t) for t in args.threads.split(",")]
