@@ -382,7 +382,9 @@ TEST(PaperTangent, TangentialPartsDifferFromDiscreteAlgorithmAtFirstOrderInIncre
   // The master segment of the STAS cases is not exactly planar; this plane is parallel to its
   // tangent plane at the Gauss point.
   static const RigidSurface parallelPlane = [] {
-    PointCase probe = analyticalSurface(plane(0.0), 0, 0, 0);
+    // The probe keeps a pointer to its surface: the surface must outlive it (ASan).
+    const RigidSurface probeSurface = plane(0.0);
+    PointCase probe = analyticalSurface(probeSurface, 0, 0, 0);
     RigidSurface s = plane(0.0);
     s.normal = -evaluatePoint(probe.setup, probe.nodes).kinematics.frame.normal;
     return s;
