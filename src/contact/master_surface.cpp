@@ -26,6 +26,16 @@ constexpr double kFreeEdgeTolerance = 1e-2;
 // the residual oscillate at about 1e-7 of its first value forever (input/stress/
 // slave_on_master_edges_sts.deck). Both segments are correct within the kink's angle there.
 constexpr double kStayOnSegmentTolerance = 1e-6;
+// Above a ridge of the master surface (segments meeting at a convex kink seen from the slave
+// side, e.g. where a concentrated slave-node force dents a C0 Quad9 surface at an element edge)
+// lies a wedge from which a point projects beyond the shared edge on each segment: its closest
+// point is on the ridge itself. Such a point is in contact with the segments there, and the
+// (slightly extrapolated) projection on one of them stands in for the ridge point to first order.
+// Without this, a penetrating slave node above such an edge was declared open, the dent relaxed,
+// the node was found again and Newton alternated between the two states forever
+// (parabolic_block_6_2a with the base offset by half an element). The bound, the same 1% of the
+// half segment as beyond a free edge, keeps the extrapolation short.
+constexpr double kRidgeTolerance = kFreeEdgeTolerance;
 
 // Corners of edge e in the Quad4/Quad9 numbering: (0,1), (1,2), (2,3), (3,0).
 std::pair<int, int> edgeCorners(int edge) { return {edge, (edge + 1) % 4}; }
@@ -41,6 +51,11 @@ std::vector<int> violatedEdges(const Eigen::Vector2d& xi) {
   std::vector<int> edges;
   for (const auto& v : violations) edges.push_back(v.second);
   return edges;
+}
+
+// How far the parameter lies beyond the segment, over all four edges (0 inside).
+double largestExcess(const Eigen::Vector2d& xi) {
+  return std::max(0.0, xi.cwiseAbs().maxCoeff() - 1);
 }
 
 }  // namespace
@@ -123,6 +138,13 @@ SegmentProjection MasterSurface::walk(int start, const Eigen::Vector2d& guess,
                                       const Eigen::Vector3d& point,
                                       const Eigen::Matrix3Xd& coordinates) const {
   std::vector<int> visited;
+  std::vector<Eigen::Vector2d> visitedXi;
+  auto projectionOn = [&](int segment, const Eigen::Vector2d& xi) -> SegmentProjection {
+    const SurfaceShape<double> shape = surfaceShape(type_, xi[0], xi[1]);
+    Eigen::Vector3d rho = Eigen::Vector3d::Zero();
+    for (int k = 0; k < shape.count; ++k) rho += shape.value[k] * coordinates.col(node(segment, k));
+    return {segment, xi, (point - rho).norm()};
+  };
   int segment = start;
   Eigen::Vector2d initial = guess;
   for (int hop = 0; hop < kMaxWalkHops && segment >= 0; ++hop) {
@@ -130,19 +152,32 @@ SegmentProjection MasterSurface::walk(int start, const Eigen::Vector2d& guess,
     const ProjectionResult p =
         closestPointProjection(type_, segmentNodes(segment, coordinates), point, initial);
     if (!p.converged) return {};
+    visitedXi.push_back(p.xi);
     if (accepts(segment, p.xi, hop == 0 ? kStayOnSegmentTolerance : kInsideTolerance)) {
-      const SurfaceShape<double> shape = surfaceShape(type_, p.xi[0], p.xi[1]);
-      Eigen::Vector3d rho = Eigen::Vector3d::Zero();
-      for (int k = 0; k < shape.count; ++k) rho += shape.value[k] * coordinates.col(node(segment, k));
-      return {segment, p.xi, (point - rho).norm()};
+      return projectionOn(segment, p.xi);
     }
     int next = -1;
+    bool leavesOnlyToVisited = true;  // every edge it leaves through leads back to the walk
     for (int edge : violatedEdges(p.xi)) {
       const int candidate = neighbour(segment, edge);
-      if (candidate >= 0 && std::find(visited.begin(), visited.end(), candidate) == visited.end()) {
+      if (candidate < 0) {
+        leavesOnlyToVisited = false;
+      } else if (std::find(visited.begin(), visited.end(), candidate) == visited.end()) {
         next = candidate;
         break;
       }
+    }
+    if (next < 0 && leavesOnlyToVisited) {
+      // Above a ridge (see kRidgeTolerance): keep the segment the walk started on, so that the
+      // point does not change segment between Newton iterations, else the least exceeded one.
+      std::size_t chosen = 0;
+      if (largestExcess(visitedXi[0]) > kRidgeTolerance) {
+        for (std::size_t k = 1; k < visited.size(); ++k) {
+          if (largestExcess(visitedXi[k]) < largestExcess(visitedXi[chosen])) chosen = k;
+        }
+      }
+      if (largestExcess(visitedXi[chosen]) > kRidgeTolerance) return {};
+      return projectionOn(visited[chosen], visitedXi[chosen]);
     }
     segment = next;
     initial.setZero();
@@ -153,17 +188,24 @@ SegmentProjection MasterSurface::walk(int start, const Eigen::Vector2d& guess,
 SegmentProjection MasterSurface::search(const Eigen::Vector3d& point,
                                         const Eigen::Matrix3Xd& coordinates) const {
   SegmentProjection best;
+  SegmentProjection nearestOutside;  // the closest projection beyond its segment
   const auto cell = cells_.find(cellKey(cellOf(point)));
   if (cell == cells_.end()) return best;
   for (int segment : cell->second) {
     const ProjectionResult p = closestPointProjection(
         type_, segmentNodes(segment, coordinates), point, Eigen::Vector2d::Zero());
-    if (!p.converged || !accepts(segment, p.xi, kInsideTolerance)) continue;
+    if (!p.converged) continue;
     const SurfaceShape<double> shape = surfaceShape(type_, p.xi[0], p.xi[1]);
     Eigen::Vector3d rho = Eigen::Vector3d::Zero();
     for (int k = 0; k < shape.count; ++k) rho += shape.value[k] * coordinates.col(node(segment, k));
-    const double distance = (point - rho).norm();
-    if (!best.found() || distance < best.distance) best = {segment, p.xi, distance};
+    const SegmentProjection candidate{segment, p.xi, (point - rho).norm()};
+    SegmentProjection& slot = accepts(segment, p.xi, kInsideTolerance) ? best : nearestOutside;
+    if (!slot.found() || candidate.distance < slot.distance) slot = candidate;
+  }
+  // No segment holds the projection: the point may lie above a ridge (see kRidgeTolerance),
+  // which the walk from the nearest segment recognizes.
+  if (!best.found() && nearestOutside.found()) {
+    return walk(nearestOutside.segment, nearestOutside.xi, point, coordinates);
   }
   return best;
 }
