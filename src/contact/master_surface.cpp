@@ -53,6 +53,11 @@ std::vector<int> violatedEdges(const Eigen::Vector2d& xi) {
   return edges;
 }
 
+// How far the parameter lies beyond edge e (negative: inside).
+double edgeExcess(const Eigen::Vector2d& xi, int edge) {
+  return edge == 0 ? -1 - xi[1] : edge == 1 ? xi[0] - 1 : edge == 2 ? xi[1] - 1 : -1 - xi[0];
+}
+
 // How far the parameter lies beyond the segment, over all four edges (0 inside).
 double largestExcess(const Eigen::Vector2d& xi) {
   return std::max(0.0, xi.cwiseAbs().maxCoeff() - 1);
@@ -62,8 +67,7 @@ double largestExcess(const Eigen::Vector2d& xi) {
 
 bool MasterSurface::accepts(int segment, const Eigen::Vector2d& xi, double tolerance) const {
   for (int edge : violatedEdges(xi)) {
-    const double excess = edge == 0 ? -1 - xi[1] : edge == 1 ? xi[0] - 1 : edge == 2 ? xi[1] - 1
-                                                                               : -1 - xi[0];
+    const double excess = edgeExcess(xi, edge);
     if (excess <= tolerance) continue;
     if (neighbour(segment, edge) >= 0 || excess > kFreeEdgeTolerance) return false;
   }
@@ -157,11 +161,13 @@ SegmentProjection MasterSurface::walk(int start, const Eigen::Vector2d& guess,
       return projectionOn(segment, p.xi);
     }
     int next = -1;
-    bool leavesOnlyToVisited = true;  // every edge it leaves through leads back to the walk
+    // Whether every edge it leaves through leads back to the walk (or is a free edge it leaves
+    // by no more than accepts() tolerates: a ridge may end at the master's boundary).
+    bool leavesOnlyToVisited = true;
     for (int edge : violatedEdges(p.xi)) {
       const int candidate = neighbour(segment, edge);
       if (candidate < 0) {
-        leavesOnlyToVisited = false;
+        if (edgeExcess(p.xi, edge) > kFreeEdgeTolerance) leavesOnlyToVisited = false;
       } else if (std::find(visited.begin(), visited.end(), candidate) == visited.end()) {
         next = candidate;
         break;

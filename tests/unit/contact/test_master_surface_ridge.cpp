@@ -61,6 +61,16 @@ TEST(MasterSurfaceRidge, PointUnderRidgeStaysOnItsSegment) {
     EXPECT_NEAR(std::abs(found.xi[0]) - 1, excessBeyondEdge(depth, slope), 1e-12);
     EXPECT_NEAR(found.distance, distanceToPlane(depth, slope), 1e-15);
   }
+  // Where the ridge meets the master's free edge y = 0, a point slightly beyond that edge (within
+  // its tolerance) is in contact too.
+  const Vector3d atBoundary(1, -1e-4, -depth);
+  for (int start : {0, 1}) {
+    const SegmentProjection found =
+        master.walk(start, Eigen::Vector2d::Zero(), atBoundary, ridge.coordinates);
+    ASSERT_TRUE(found.found()) << "walk from segment " << start << " at the free edge";
+    EXPECT_EQ(found.segment, start);
+    EXPECT_NEAR(found.distance, distanceToPlane(depth, slope), 1e-15);
+  }
   master.buildSearchGrid(ridge.coordinates, 1.0);
   const SegmentProjection searched = master.search(point, ridge.coordinates);
   ASSERT_TRUE(searched.found());
