@@ -67,6 +67,7 @@ class CholmodSolver final : public LinearSolver {
   }
   ~CholmodSolver() override {
     if (factor_) cholmod_free_factor(&factor_, &common_);
+    if (symbolic_) cholmod_free_factor(&symbolic_, &common_);
     cholmod_finish(&common_);
   }
   CholmodSolver(const CholmodSolver&) = delete;
@@ -77,9 +78,10 @@ class CholmodSolver final : public LinearSolver {
   void analyzePattern(const SparseMatrix& matrix) override {
     const auto start = std::chrono::steady_clock::now();
     if (factor_) cholmod_free_factor(&factor_, &common_);
+    if (symbolic_) cholmod_free_factor(&symbolic_, &common_);
     cholmod_sparse view = viewOf(matrix);
-    factor_ = cholmod_analyze(&view, &common_);
-    if (!factor_) {
+    symbolic_ = cholmod_analyze(&view, &common_);
+    if (!symbolic_) {
       throw std::runtime_error(fmt::format("CHOLMOD analysis failed (status {})", common_.status));
     }
     ++statistics_.analyses;
@@ -88,10 +90,15 @@ class CholmodSolver final : public LinearSolver {
   }
 
   void factorize(const SparseMatrix& matrix) override {
-    if (!factor_ || factor_->n != static_cast<std::size_t>(matrix.rows())) {
+    if (!symbolic_ || symbolic_->n != static_cast<std::size_t>(matrix.rows())) {
       throw std::logic_error("CHOLMOD: factorize() before analyzePattern() of this pattern");
     }
     const auto start = std::chrono::steady_clock::now();
+    if (!factor_) factor_ = cholmod_copy_factor(symbolic_, &common_);
+    if (!factor_) {
+      throw std::runtime_error(
+          fmt::format("CHOLMOD: out of memory for the factor (status {})", common_.status));
+    }
     ++statistics_.factorizations;
     cholmod_sparse view = viewOf(matrix);
     cholmod_factorize(&view, factor_, &common_);
@@ -123,6 +130,7 @@ class CholmodSolver final : public LinearSolver {
   }
 
   Eigen::VectorXd solve(const Eigen::VectorXd& rhs) override {
+    if (!factor_) throw std::logic_error("CHOLMOD: solve() without factorization");
     const auto start = std::chrono::steady_clock::now();
     cholmod_dense right{};
     right.nrow = static_cast<std::size_t>(rhs.size());
@@ -144,6 +152,11 @@ class CholmodSolver final : public LinearSolver {
     return result;
   }
 
+  // The numeric factor goes; the analysis (symbolic_) stays for the next factorize().
+  void releaseFactor() override {
+    if (factor_) cholmod_free_factor(&factor_, &common_);
+  }
+
  private:
   // Values plus integer indices of the factor (supernodal: x and s; simplicial: x and i).
   double factorBytes() const {
@@ -155,7 +168,8 @@ class CholmodSolver final : public LinearSolver {
   }
 
   cholmod_common common_{};
-  cholmod_factor* factor_ = nullptr;
+  cholmod_factor* symbolic_ = nullptr;  // the analysis of the current pattern
+  cholmod_factor* factor_ = nullptr;    // numeric factor, a copy of symbolic_ factorized
 };
 
 }  // namespace

@@ -51,6 +51,9 @@ class LinearSolver {
   // and unchanged until the last solve() with this factorization (UMFPACK refines with it).
   virtual void factorize(const SparseMatrix& matrix) = 0;
   virtual Eigen::VectorXd solve(const Eigen::VectorXd& rhs) = 0;
+  // Frees the numeric factor and keeps the symbolic analysis: a solver that another one has
+  // replaced for now (CHOLMOD while the system is unsymmetric) holds no factor memory.
+  virtual void releaseFactor() = 0;
 
   const LinearSolverStatistics& statistics() const { return statistics_; }
 

@@ -35,6 +35,11 @@ void TangentSolver::factorizeWith(Backend& backend, const SystemMatrices& system
     backend.solver->analyzePattern(system.free);
     backend.analyzedPattern = system.patternVersion;
   }
+  // Only one factor is alive at a time: the backend not used now gives its numeric factor back
+  // before the new one is built (peak memory of a run that switches between CHOLMOD and
+  // UMFPACK is one factor, not two; the symbolic analyses stay).
+  Backend& idle = &backend == &symmetric_ ? general_ : symmetric_;
+  idle.solver->releaseFactor();
   backend.solver->factorize(system.free);
   active_ = backend.solver.get();
 }

@@ -81,8 +81,7 @@ class UmfpackSolver final : public LinearSolver {
       ++statistics_.failedFactorizations;
       throw std::runtime_error(fmt::format("UMFPACK factorization failed (status {})", status));
     }
-    statistics_.largestFactorFlops =
-        std::max(statistics_.largestFactorFlops, info_[UMFPACK_FLOPS]);
+    statistics_.largestFactorFlops = std::max(statistics_.largestFactorFlops, info_[UMFPACK_FLOPS]);
     // UMFPACK_NUMERIC_SIZE: the final size of the Numeric object (L, U, indices), in Units.
     statistics_.largestFactorBytes = std::max(
         statistics_.largestFactorBytes, info_[UMFPACK_NUMERIC_SIZE] * info_[UMFPACK_SIZE_OF_UNIT]);
@@ -111,6 +110,11 @@ class UmfpackSolver final : public LinearSolver {
     ++statistics_.solves;
     statistics_.solveSeconds += secondsSince(start);
     return solution;
+  }
+
+  void releaseFactor() override {
+    if (numeric_) umfpack_di_free_numeric(&numeric_);
+    matrix_ = nullptr;
   }
 
  private:

@@ -171,5 +171,30 @@ TEST(TangentSolver, SymbolicAnalysisRepeatedOnlyWhenThePatternVersionChanges) {
   EXPECT_EQ(solver.statistics().analyses, 3);
 }
 
+TEST(TangentSolver, SwitchingBackendsKeepsOneFactorAndBothAnalyses) {
+  // A frictional run alternates: symmetric (CHOLMOD) while all points stick, unsymmetric
+  // (UMFPACK) while they slide. The idle backend frees its numeric factor, keeps its analysis,
+  // and factorizes correctly again from the symbolic factor when the run switches back.
+  const SparseMatrix symmetricMatrix = gridLaplacian(10, 0.0);
+  SparseMatrix unsymmetricMatrix = symmetricMatrix;
+  for (int k = 0; k + 1 < unsymmetricMatrix.rows(); ++k)
+    unsymmetricMatrix.coeffRef(k, k + 1) += 0.3 * (k % 3 == 0);
+  const Eigen::VectorXd rhs = rightHandSide(symmetricMatrix.rows());
+  // The systems outlive their solves (UMFPACK refines with the matrix it factorized).
+  const SystemMatrices symmetricSystem = systemOf(symmetricMatrix, true, 7);
+  const SystemMatrices unsymmetricSystem = systemOf(unsymmetricMatrix, false, 7);
+  TangentSolver solver;
+  for (int round = 0; round < 3; ++round) {
+    solver.factorize(symmetricSystem);
+    EXPECT_EQ(solver.activeBackend(), "CHOLMOD");
+    EXPECT_LT(relativeResidual(symmetricMatrix, solver.solve(rhs), rhs), 1e-13);
+    solver.factorize(unsymmetricSystem);
+    EXPECT_EQ(solver.activeBackend(), "UMFPACK");
+    EXPECT_LT(relativeResidual(unsymmetricMatrix, solver.solve(rhs), rhs), 1e-13);
+  }
+  EXPECT_EQ(solver.statistics().analyses, 2);  // one per backend, never repeated
+  EXPECT_EQ(solver.statistics().factorizations, 6);
+}
+
 }  // namespace
 }  // namespace cc
