@@ -65,7 +65,7 @@ int main(int argc, char** argv) {
   compareCommand->add_option("run", compare.run, "Results file of the run")->required();
   compareCommand->add_option("reference", compare.reference, "Reference results file")->required();
   compareCommand->add_option("--rtol", compare.rtol, "Relative tolerance")->capture_default_str();
-  compareCommand->add_option("--atol", compare.atol, "Absolute tolerance (default: 1e-12 x field max)");
+  compareCommand->add_option("--atol", compare.atol, "Absolute tolerance (default: 1e-10 x field max)");
   compareCommand->add_option("--fields", compare.fields,
                              "Datasets per step to compare (default: set_reactions, "
                              "contact/*/total_force)")
