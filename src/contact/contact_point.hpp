@@ -85,7 +85,8 @@ PointResponse<Scalar> pointResponse(const PointKinematics<Scalar>& kin,
   // this step, consistently in residual and tangent.
   if (law.friction > 0 && history.projected) {
     response.frictional = true;
-    Eigen::Matrix<Scalar, 2, 1> trial;
+    // Zero only to quiet GCC's maybe-uninitialized: the switch covers every integration.
+    Eigen::Matrix<Scalar, 2, 1> trial = Eigen::Matrix<Scalar, 2, 1>::Zero();
     switch (law.integration) {
       case TangentialIntegration::ParallelTranslation:
         trial = trialTraction(kin.frame, Vec3<Scalar>(history.traction.cast<Scalar>()), kin.slip,

@@ -135,7 +135,9 @@ TEST(ContactRuns, FullSlidingReachesCoulombLimit) {
     const RecordedStep& last = run.steps.back();
     const ContactPairRecord& pair = last.pair("interface");
     for (int i = 0; i < pair.state.size(); ++i) {
-      if (pair.gap[i] < 0) EXPECT_EQ(pair.state[i], 2) << "point " << i << " not sliding";
+      if (pair.gap[i] < 0) {
+        EXPECT_EQ(pair.state[i], 2) << "point " << i << " not sliding";
+      }
     }
     const Eigen::Vector3d top = last.setReaction("block_top");
     EXPECT_NEAR(std::abs(top.x() / top.y()), 0.3, 1e-6);
