@@ -50,8 +50,8 @@ constexpr double kSearchReachInSegments = 1.0;
 ContactPair::ContactPair(ContactPairConfig config, const FaceSet& master)
     : config_(std::move(config)), master_(master) {}
 
-std::unique_ptr<ContactPair> ContactPair::nodeToSegment(ContactPairConfig config,
-                                                        const Mesh& mesh, const FaceSet& master,
+std::unique_ptr<ContactPair> ContactPair::nodeToSegment(ContactPairConfig config, const Mesh& mesh,
+                                                        const FaceSet& master,
                                                         const FaceSet& slave) {
   std::unique_ptr<ContactPair> pair(new ContactPair(std::move(config), master));
   // Tributary area of each slave node in the reference configuration: sum over its faces of the
@@ -63,7 +63,8 @@ std::unique_ptr<ContactPair> ContactPair::nodeToSegment(ContactPairConfig config
     for (const auto& q : gaussQuad(kTributaryAreaPoints)) {
       const SurfaceShape<double> shape = surfaceShape(type, q.xi[0], q.xi[1]);
       const double dA = areaElement(type, nodes, q.xi) * q.weight;
-      for (int k = 0; k < shape.count; ++k) area[slave.connectivity(face, k)] += shape.value[k] * dA;
+      for (int k = 0; k < shape.count; ++k)
+        area[slave.connectivity(face, k)] += shape.value[k] * dA;
     }
   }
   for (const auto& [node, nodalArea] : area) {
@@ -162,11 +163,12 @@ void ContactPair::buildItem(Point& point) const {
 
 Eigen::Vector3d ContactPair::slavePosition(const Point& point, const Eigen::Matrix3Xd& x) const {
   Eigen::Vector3d position = Eigen::Vector3d::Zero();
-  for (int a = 0; a < point.slaveCount; ++a) position += point.slaveShape[a] * x.col(point.slaveNodes[a]);
+  for (int a = 0; a < point.slaveCount; ++a)
+    position += point.slaveShape[a] * x.col(point.slaveNodes[a]);
   return position;
 }
 
-void ContactPair::searchSegments(const Eigen::Matrix3Xd& x, double time) {
+LocalStatus ContactPair::searchSegments(const Eigen::Matrix3Xd& x, double time) {
   if (gridTime_ != time) {
     master_.buildSearchGrid(x, kSearchReachInSegments);
     gridTime_ = time;
@@ -176,7 +178,16 @@ void ContactPair::searchSegments(const Eigen::Matrix3Xd& x, double time) {
     const Eigen::Vector3d position = slavePosition(point, x);
     SegmentProjection found;
     if (point.segment >= 0) found = master_.walk(point.segment, point.xi, position, x);
+    const bool brokeDownOnOwnSegment = found.projectionBrokeDown;
     if (!found.found()) found = master_.search(position, x);
+    if (!found.found() && brokeDownOnOwnSegment) {
+      if (changed) ++topologyVersion_;  // points before this one may have moved already
+      return LocalStatus::failure(
+          FailureKind::ProjectionFailure,
+          fmt::format("contact pair '{}': the closest-point projection of slave point {} onto "
+                      "master segment {} broke down (degenerate or strongly distorted segment)",
+                      config_.name, &point - points_.data(), point.segment));
+    }
     if (found.segment != point.segment) {
       point.segment = found.segment;
       buildItem(point);
@@ -185,6 +196,7 @@ void ContactPair::searchSegments(const Eigen::Matrix3Xd& x, double time) {
     point.xi = found.xi;
   }
   if (changed) ++topologyVersion_;
+  return LocalStatus::success();
 }
 
 void ContactPair::initializeHistory(const AssemblyState& state) {
@@ -196,11 +208,14 @@ void ContactPair::initializeHistory(const AssemblyState& state) {
       const SurfaceShape<double> shape =
           surfaceShape(master_.type(), point.gaussPoint[0], point.gaussPoint[1]);
       point.committed.masterPoint.setZero();
-      for (int k = 0; k < shape.count; ++k) point.committed.masterPoint += shape.value[k] * nodes.col(k);
+      for (int k = 0; k < shape.count; ++k)
+        point.committed.masterPoint += shape.value[k] * nodes.col(k);
       point.committed.surfaceOffset = offset;
       point.committed.projected = true;
     }
   } else {
+    // Before the first step no point has a segment yet, so only the global search runs and
+    // the projection cannot break down on a point's own segment: this cannot fail.
     searchSegments(x, state.previousTime);
     for (Point& point : points_) {
       point.committed.projected = point.segment >= 0;
@@ -224,12 +239,12 @@ LocalStatus ContactPair::prepare(const AssemblyState& state) {
     if (!surfaceOffset_.allFinite()) {
       return LocalStatus::failure(FailureKind::NotFinite,
                                   fmt::format("contact pair '{}': rigid surface motion is not "
-                                              "finite at t = {}", config_.name, state.time));
+                                              "finite at t = {}",
+                                              config_.name, state.time));
     }
     return LocalStatus::success();
   }
-  searchSegments(*state.current, state.time);
-  return LocalStatus::success();
+  return searchSegments(*state.current, state.time);
 }
 
 PointSetup ContactPair::setupFor(const Point& point) const {
@@ -265,8 +280,9 @@ void ContactPair::storeTrial(Point& point, const PointEvaluation& e, const LawPa
     t.tractionCovariant = e.response.tangential.covariant;
     if (e.response.state == PointState::Slip && law.penaltyTangential > 0) {
       // Slip of this step: the part of the trial traction the return mapping removed.
-      t.slipIncrement = (e.response.tangential.trialNorm - law.friction * std::abs(t.normalTraction)) /
-                        law.penaltyTangential;
+      t.slipIncrement =
+          (e.response.tangential.trialNorm - law.friction * std::abs(t.normalTraction)) /
+          law.penaltyTangential;
     }
   }
 }
@@ -279,7 +295,8 @@ LocalStatus ContactPair::evaluate(std::size_t item, const AssemblyState& state,
     return LocalStatus::success();
   }
   NodeMatrix<double> nodes(3, point.layout.nodeCount);
-  for (int k = 0; k < point.layout.nodeCount; ++k) nodes.col(k) = state.current->col(point.nodes[k]);
+  for (int k = 0; k < point.layout.nodeCount; ++k)
+    nodes.col(k) = state.current->col(point.nodes[k]);
   const PointSetup setup = setupFor(point);
   const PointEvaluation e = evaluatePoint(setup, nodes);
   storeTrial(point, e, config_.law);
@@ -287,8 +304,8 @@ LocalStatus ContactPair::evaluate(std::size_t item, const AssemblyState& state,
   if (!e.force.allFinite()) {
     return LocalStatus::failure(
         FailureKind::NotFinite,
-        fmt::format("contact pair '{}', point {}: force is not finite (gap {})", config_.name,
-                    item, e.kinematics.gap));
+        fmt::format("contact pair '{}', point {}: force is not finite (gap {})", config_.name, item,
+                    e.kinematics.gap));
   }
   force = e.force;
   if (tangent) {
@@ -373,8 +390,9 @@ ContactPairRecord ContactPair::record() const {
     r.weight[i] = t.weight;
     // Force on the slave body: -(N n - T) w (the opposite of the internal-force contribution).
     const Eigen::Vector3d force =
-        t.state == PointState::Open ? Eigen::Vector3d::Zero()
-                                    : Eigen::Vector3d((-t.normalTraction * t.normal + t.traction) * t.weight);
+        t.state == PointState::Open
+            ? Eigen::Vector3d::Zero()
+            : Eigen::Vector3d((-t.normalTraction * t.normal + t.traction) * t.weight);
     r.totalForce += force;
     for (int a = 0; a < p.slaveCount; ++a) {
       auto [it, inserted] = nodalForce.try_emplace(p.slaveNodes[a], Eigen::Vector3d::Zero());

@@ -36,8 +36,7 @@ class ContactPair : public Contribution {
   static std::unique_ptr<ContactPair> nodeToSegment(ContactPairConfig config, const Mesh& mesh,
                                                     const FaceSet& master, const FaceSet& slave);
   static std::unique_ptr<ContactPair> segmentToSegment(ContactPairConfig config,
-                                                       const FaceSet& master,
-                                                       const FaceSet& slave);
+                                                       const FaceSet& master, const FaceSet& slave);
   static std::unique_ptr<ContactPair> segmentToAnalytical(ContactPairConfig config,
                                                           const FaceSet& master,
                                                           RigidSurface surface,
@@ -74,7 +73,7 @@ class ContactPair : public Contribution {
     Eigen::Vector3d slavePoint = Eigen::Vector3d::Zero();
     Eigen::Vector3d masterPoint = Eigen::Vector3d::Zero();
     Eigen::Vector3d normal = Eigen::Vector3d::Zero();
-    Eigen::Vector3d traction = Eigen::Vector3d::Zero();  // T (Cartesian)
+    Eigen::Vector3d traction = Eigen::Vector3d::Zero();           // T (Cartesian)
     Eigen::Vector2d tractionCovariant = Eigen::Vector2d::Zero();  // T_i
     double gap = 0;
     double normalTraction = 0;
@@ -111,7 +110,10 @@ class ContactPair : public Contribution {
   ContactPair(ContactPairConfig config, const FaceSet& master);
   void buildItem(Point& point) const;
   Eigen::Vector3d slavePosition(const Point& point, const Eigen::Matrix3Xd& x) const;
-  void searchSegments(const Eigen::Matrix3Xd& x, double time);
+  // Assigns every point its master segment (local walk, then the global search). Fails with
+  // ProjectionFailure when a point's projection broke down on its own segment and no other
+  // segment holds it: treating it as open could drop a point that is in contact.
+  LocalStatus searchSegments(const Eigen::Matrix3Xd& x, double time);
   // Table 1, step 1: the projections in the initial configuration start the history.
   void initializeHistory(const AssemblyState& state);
   PointSetup setupFor(const Point& point) const;

@@ -38,7 +38,9 @@ constexpr double kStayOnSegmentTolerance = 1e-6;
 constexpr double kRidgeTolerance = kFreeEdgeTolerance;
 
 // Corners of edge e in the Quad4/Quad9 numbering: (0,1), (1,2), (2,3), (3,0).
-std::pair<int, int> edgeCorners(int edge) { return {edge, (edge + 1) % 4}; }
+std::pair<int, int> edgeCorners(int edge) {
+  return {edge, (edge + 1) % 4};
+}
 
 // The edges the parameter leaves through, most violated first.
 std::vector<int> violatedEdges(const Eigen::Vector2d& xi) {
@@ -110,8 +112,7 @@ Eigen::Vector3i MasterSurface::cellOf(const Eigen::Vector3d& point) const {
   return ((point - gridOrigin_) / cellSize_).array().floor().cast<int>();
 }
 
-void MasterSurface::buildSearchGrid(const Eigen::Matrix3Xd& coordinates,
-                                    double reachInSegments) {
+void MasterSurface::buildSearchGrid(const Eigen::Matrix3Xd& coordinates, double reachInSegments) {
   cells_.clear();
   if (segmentCount() == 0) return;
   std::vector<Eigen::AlignedBox3d> boxes(segmentCount());
@@ -155,7 +156,11 @@ SegmentProjection MasterSurface::walk(int start, const Eigen::Vector2d& guess,
     visited.push_back(segment);
     const ProjectionResult p =
         closestPointProjection(type_, segmentNodes(segment, coordinates), point, initial);
-    if (!p.converged) return {};
+    if (!p.converged) {
+      SegmentProjection notFound;
+      notFound.projectionBrokeDown = p.brokeDown;
+      return notFound;
+    }
     visitedXi.push_back(p.xi);
     if (accepts(segment, p.xi, hop == 0 ? kStayOnSegmentTolerance : kInsideTolerance)) {
       return projectionOn(segment, p.xi);
@@ -198,8 +203,8 @@ SegmentProjection MasterSurface::search(const Eigen::Vector3d& point,
   const auto cell = cells_.find(cellKey(cellOf(point)));
   if (cell == cells_.end()) return best;
   for (int segment : cell->second) {
-    const ProjectionResult p = closestPointProjection(
-        type_, segmentNodes(segment, coordinates), point, Eigen::Vector2d::Zero());
+    const ProjectionResult p = closestPointProjection(type_, segmentNodes(segment, coordinates),
+                                                      point, Eigen::Vector2d::Zero());
     if (!p.converged) continue;
     const SurfaceShape<double> shape = surfaceShape(type_, p.xi[0], p.xi[1]);
     Eigen::Vector3d rho = Eigen::Vector3d::Zero();

@@ -19,6 +19,9 @@ struct SegmentProjection {
   int segment = -1;  // -1: no segment found (the point projects outside the master surface)
   Eigen::Vector2d xi = Eigen::Vector2d::Zero();
   double distance = 0;  // |r_s - rho|
+  // The closest-point iteration broke down on a segment (ProjectionResult::brokeDown), so
+  // "not found" may hide a point that is in contact.
+  bool projectionBrokeDown = false;
   bool found() const { return segment >= 0; }
 };
 

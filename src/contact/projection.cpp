@@ -49,7 +49,10 @@ ProjectionResult closestPointProjection(SegmentType type, const NodeMatrix<doubl
     // curved segment) fall back to the Gauss-Newton step with the metric alone.
     const Eigen::Matrix2d& system = positiveDefinite(hessian) ? hessian : metric;
     Eigen::Vector2d step = system.inverse() * gradient;
-    if (!step.allFinite()) return result;
+    if (!step.allFinite()) {
+      result.brokeDown = true;
+      return result;
+    }
     const double length = step.norm();
     if (length > options.maxStep) step *= options.maxStep / length;
     xi = (xi + step).cwiseMax(-options.parameterBound).cwiseMin(options.parameterBound);
@@ -60,6 +63,8 @@ ProjectionResult closestPointProjection(SegmentType type, const NodeMatrix<doubl
     }
   }
   result.xi = xi;
+  result.brokeDown =
+      !result.converged && xi.cwiseAbs().maxCoeff() < options.parameterBound - options.maxStep;
   return result;
 }
 

@@ -19,6 +19,10 @@ struct ProjectionOptions {
 
 struct ProjectionResult {
   bool converged = false;
+  // Not converged although the iterate stayed within the parameter bound: the Newton iteration
+  // broke down (a non-finite step on a degenerate segment, or no convergence in maxIterations),
+  // as opposed to a closest point that lies beyond the bound, i.e. off the segment.
+  bool brokeDown = false;
   Eigen::Vector2d xi = Eigen::Vector2d::Zero();
   int iterations = 0;
   // Whether xi lies in the closed segment [-1, 1]^2 (up to a small tolerance).

@@ -91,7 +91,8 @@ Eigen::VectorXd assembleForce(ContactPair& pair, const Matrix3Xd& x, const Matri
     const auto nodes = pair.itemNodes(i);
     Eigen::VectorXd force = Eigen::VectorXd::Zero(3 * nodes.size());
     EXPECT_TRUE(pair.evaluate(i, state, force, nullptr).ok);
-    for (std::size_t k = 0; k < nodes.size(); ++k) global.segment<3>(3 * nodes[k]) += force.segment<3>(3 * k);
+    for (std::size_t k = 0; k < nodes.size(); ++k)
+      global.segment<3>(3 * nodes[k]) += force.segment<3>(3 * k);
   }
   return global;
 }
@@ -116,6 +117,41 @@ TEST(ContactPair, UniformPenetrationGivesExactTotalForce) {
     const ContactPairRecord record = pair->record();
     EXPECT_NEAR(record.totalForce.z(), 1.0e3 * g * area, 1e-12);  // pushes the slave down... out
     for (int i = 0; i < record.gap.size(); ++i) EXPECT_NEAR(record.gap[i], -g, 1e-15);
+  }
+}
+
+// A point whose closest-point projection breaks down on its own segment (here the segment has
+// collapsed to a point, so its metric is singular) and that no other segment holds makes the
+// step fail with ProjectionFailure, so that the step is cut back instead of the point being
+// dropped as open. A point that merely leaves the master surface is no failure.
+TEST(ContactPair, ProjectionBreakdownOnItsOwnSegmentFailsTheStep) {
+  for (PointKind kind : {PointKind::SegmentToSegment, PointKind::NodeToSegment}) {
+    TwoSurfaces s = overlappingSquares(1e-3);
+    auto pair = kind == PointKind::SegmentToSegment
+                    ? ContactPair::segmentToSegment(config(kind), s.master, s.slave)
+                    : ContactPair::nodeToSegment(config(kind), s.mesh, s.master, s.slave);
+    const Matrix3Xd start = s.mesh.coordinates;
+    assembleForce(*pair, start, start, 1);  // every point finds its segment
+    pair->commitStep();
+
+    Matrix3Xd collapsed = start;  // master segment 0 (nodes 0, 1, 4, 3) shrinks to one point
+    for (int node : {0, 1, 3, 4}) collapsed.col(node) = Vector3d(0.5, 0.5, 0);
+    AssemblyState collapsedState{2, 1, &collapsed, &collapsed, &start};
+    const LocalStatus status = pair->prepare(collapsedState);
+    EXPECT_FALSE(status.ok);
+    EXPECT_EQ(status.kind, FailureKind::ProjectionFailure);
+    EXPECT_NE(status.detail.find("broke down"), std::string::npos) << status.detail;
+    pair->restoreStep();
+
+    Matrix3Xd shifted = start;  // the master moves away sideways: points leave, no failure
+    for (int node = 0; node < 9; ++node) shifted(0, node) += 10;
+    AssemblyState shiftedState{2, 1, &shifted, &shifted, &start};
+    EXPECT_TRUE(pair->prepare(shiftedState).ok);
+    for (std::size_t i = 0; i < pair->itemCount(); ++i) {
+      Eigen::VectorXd force = Eigen::VectorXd::Zero(3 * pair->itemNodes(i).size());
+      EXPECT_TRUE(pair->evaluate(i, shiftedState, force, nullptr).ok);
+      EXPECT_EQ(force.norm(), 0.0);
+    }
   }
 }
 
@@ -147,7 +183,8 @@ std::vector<double> tractionAlongPath(TangentialIntegration integration, int* se
     for (int i = 0; i < r.tangentialTraction.cols(); ++i) sum += r.tangentialTraction(0, i);
     tractions.push_back(sum);
     int segmentSum = 0;
-    for (std::size_t i = 0; i < pair->itemCount(); ++i) segmentSum += static_cast<int>(pair->itemNodes(i)[1]);
+    for (std::size_t i = 0; i < pair->itemCount(); ++i)
+      segmentSum += static_cast<int>(pair->itemNodes(i)[1]);
     if (lastSegmentSum >= 0 && segmentSum != lastSegmentSum) ++*segmentChanges;
     lastSegmentSum = segmentSum;
     previous = x;
