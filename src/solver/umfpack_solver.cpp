@@ -1,11 +1,14 @@
 // UMFPACK sparse LU behind the LinearSolver interface (unsymmetric tangents of frictional
-// sliding, and symmetric indefinite ones that CHOLMOD rejects).
+// sliding, and symmetric indefinite ones that CHOLMOD rejects). The 64-bit-index (dl) routines:
+// with 32-bit indices UMFPACK runs out of index space (status -1, "out of memory") once the LU
+// factor passes ~2^31 entries, which a friction model of ~390 k equations already reaches.
 #include <fmt/format.h>
 #include <umfpack.h>
 
 #include <algorithm>
 #include <chrono>
 #include <stdexcept>
+#include <vector>
 
 #include "common/errors.hpp"
 #include "solver/linear_solver.hpp"
@@ -35,7 +38,7 @@ int orderingCode(FillOrdering ordering) {
 class UmfpackSolver final : public LinearSolver {
  public:
   explicit UmfpackSolver(FillOrdering ordering) {
-    umfpack_di_defaults(control_);
+    umfpack_dl_defaults(control_);
     control_[UMFPACK_ORDERING] = orderingCode(ordering);
   }
   ~UmfpackSolver() override { release(); }
@@ -48,9 +51,12 @@ class UmfpackSolver final : public LinearSolver {
     checkShape(matrix);
     const auto start = std::chrono::steady_clock::now();
     release();
-    const int status =
-        umfpack_di_symbolic(rows(matrix), rows(matrix), matrix.outerIndexPtr(),
-                            matrix.innerIndexPtr(), matrix.valuePtr(), &symbolic_, control_, info_);
+    copyIndices(matrix);
+    const SuiteSparse_long size = matrix.rows();
+    const SuiteSparse_long status =
+        umfpack_dl_symbolic(size, size, columnStarts_.data(), rowIndices_.data(), matrix.valuePtr(),
+                            &symbolic_, control_, info_);
+    throwIfOutOfMemory(status, "analysis", matrix);
     if (status != UMFPACK_OK) {
       throw std::runtime_error(fmt::format("UMFPACK analysis failed (status {})", status));
     }
@@ -66,11 +72,14 @@ class UmfpackSolver final : public LinearSolver {
     }
     const auto start = std::chrono::steady_clock::now();
     ++statistics_.factorizations;
-    if (numeric_) umfpack_di_free_numeric(&numeric_);
+    if (numeric_) umfpack_dl_free_numeric(&numeric_);
     matrix_ = nullptr;
-    const int status = umfpack_di_numeric(matrix.outerIndexPtr(), matrix.innerIndexPtr(),
-                                          matrix.valuePtr(), symbolic_, &numeric_, control_, info_);
+    copyIndices(matrix);  // the same pattern as analyzed; cheap next to the factorization
+    const SuiteSparse_long status =
+        umfpack_dl_numeric(columnStarts_.data(), rowIndices_.data(), matrix.valuePtr(), symbolic_,
+                           &numeric_, control_, info_);
     statistics_.factorizationSeconds += secondsSince(start);
+    throwIfOutOfMemory(status, "factorization", matrix);
     if (status == UMFPACK_WARNING_singular_matrix) {
       ++statistics_.failedFactorizations;
       throw StepFailure(FailureKind::SingularSystem,
@@ -101,9 +110,9 @@ class UmfpackSolver final : public LinearSolver {
     if (!numeric_ || !matrix_) throw std::logic_error("UMFPACK: solve() without factorization");
     const auto start = std::chrono::steady_clock::now();
     Eigen::VectorXd solution(rhs.size());
-    const int status = umfpack_di_solve(UMFPACK_A, matrix_->outerIndexPtr(),
-                                        matrix_->innerIndexPtr(), matrix_->valuePtr(),
-                                        solution.data(), rhs.data(), numeric_, control_, info_);
+    const SuiteSparse_long status =
+        umfpack_dl_solve(UMFPACK_A, columnStarts_.data(), rowIndices_.data(), matrix_->valuePtr(),
+                         solution.data(), rhs.data(), numeric_, control_, info_);
     if (status != UMFPACK_OK) {
       throw std::runtime_error(fmt::format("UMFPACK solve failed (status {})", status));
     }
@@ -113,7 +122,7 @@ class UmfpackSolver final : public LinearSolver {
   }
 
   void releaseFactor() override {
-    if (numeric_) umfpack_di_free_numeric(&numeric_);
+    if (numeric_) umfpack_dl_free_numeric(&numeric_);
     matrix_ = nullptr;
   }
 
@@ -125,9 +134,22 @@ class UmfpackSolver final : public LinearSolver {
     }
   }
   void release() {
-    if (numeric_) umfpack_di_free_numeric(&numeric_);
-    if (symbolic_) umfpack_di_free_symbolic(&symbolic_);
+    if (numeric_) umfpack_dl_free_numeric(&numeric_);
+    if (symbolic_) umfpack_dl_free_symbolic(&symbolic_);
     matrix_ = nullptr;
+  }
+  // Eigen's 32-bit column starts and row indices widened for the dl routines.
+  void copyIndices(const SparseMatrix& matrix) {
+    columnStarts_.assign(matrix.outerIndexPtr(), matrix.outerIndexPtr() + matrix.cols() + 1);
+    rowIndices_.assign(matrix.innerIndexPtr(), matrix.innerIndexPtr() + matrix.nonZeros());
+  }
+  // Memory is a limit of the machine, not a step that a smaller load increment could fix.
+  void throwIfOutOfMemory(SuiteSparse_long status, const char* phase, const SparseMatrix& matrix) {
+    if (status != UMFPACK_ERROR_out_of_memory) return;
+    throw std::runtime_error(fmt::format(
+        "UMFPACK ran out of memory in the {} of the {} x {} tangent ({} nonzeros); the LU "
+        "factor of this model does not fit: use fewer elements or a machine with more memory",
+        phase, matrix.rows(), matrix.cols(), matrix.nonZeros()));
   }
 
   double control_[UMFPACK_CONTROL];
@@ -135,6 +157,7 @@ class UmfpackSolver final : public LinearSolver {
   void* symbolic_ = nullptr;
   void* numeric_ = nullptr;
   const SparseMatrix* matrix_ = nullptr;
+  std::vector<SuiteSparse_long> columnStarts_, rowIndices_;
   int size_ = -1;
 };
 
