@@ -79,17 +79,6 @@ class RunObserver : public StepObserver {
   const LoadStepper* stepper_ = nullptr;
 };
 
-OutputSelection selectionOf(const OutputSpec& output) {
-  OutputSelection s;
-  s.displacement = output.displacement;
-  s.reaction = output.reaction;
-  s.stress = output.stress;
-  s.contact = output.contact;
-  s.csv = output.csv;
-  s.xdmf = output.xdmf;
-  return s;
-}
-
 const char* outcomeName(RunSummary::Outcome outcome) {
   switch (outcome) {
     case RunSummary::Outcome::Completed: return "completed";
@@ -137,7 +126,7 @@ int runCommand(const RunOptions& options) {
   try {
     const ProblemSpec spec = parseDeck(options.deck);
     path = resultsPath(options.deck, spec.output.file, options.output);
-    selection = selectionOf(spec.output);
+    selection = outputSelection(spec.output);
     checkOutputWritable(path, selection);
     model = buildModel(spec);
     references = std::make_unique<verification::ReferenceTracker>(*model);

@@ -5,6 +5,17 @@ namespace cc {
 
 Model::~Model() = default;
 
+OutputSelection outputSelection(const OutputSpec& output) {
+  OutputSelection selection;
+  selection.displacement = output.displacement;
+  selection.reaction = output.reaction;
+  selection.stress = output.stress;
+  selection.contact = output.contact;
+  selection.csv = output.csv;
+  selection.xdmf = output.xdmf;
+  return selection;
+}
+
 void Model::prescribedValues(double t, Eigen::VectorXd& values) const {
   boundaryConditions_.prescribedValues(t, dofs_, mesh_.coordinates, values);
 }

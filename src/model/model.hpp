@@ -16,6 +16,7 @@
 #include "model/boundary_conditions.hpp"
 #include "model/element_set.hpp"
 #include "output/results.hpp"
+#include "output/results_writer.hpp"
 #include "solver/nonlinear_problem.hpp"
 
 namespace cc {
@@ -81,5 +82,8 @@ class Model : public NonlinearProblem {
 // not fit the mesh (unknown group or set, wrong element type for the mesh, contact on a volume
 // group, bad expression, ...).
 std::unique_ptr<Model> buildModel(const ProblemSpec& spec);
+
+// The fields the deck's `output` line asks the results writer for.
+OutputSelection outputSelection(const OutputSpec& output);
 
 }  // namespace cc

@@ -79,17 +79,6 @@ class TimedWriterObserver : public cc::StepObserver {
   bool withStress_;
 };
 
-cc::OutputSelection selectionOf(const cc::OutputSpec& output) {
-  cc::OutputSelection selection;
-  selection.displacement = output.displacement;
-  selection.reaction = output.reaction;
-  selection.stress = output.stress;
-  selection.contact = output.contact;
-  selection.csv = output.csv;
-  selection.xdmf = output.xdmf;
-  return selection;
-}
-
 struct Options {
   std::string deck;
   std::string output;
@@ -258,7 +247,7 @@ int run(const Options& options) {
   const std::string path = options.output.empty()
                                ? std::filesystem::path(options.deck).stem().string() + ".h5"
                                : options.output;
-  const cc::OutputSelection selection = selectionOf(spec.output);
+  const cc::OutputSelection selection = cc::outputSelection(spec.output);
   std::unique_ptr<cc::Model> model = cc::buildModel(spec);
   const double setupSeconds = secondsSince(start);
 
