@@ -9,7 +9,7 @@ packages=(
   libmuparser-dev libcli11-dev libfmt-dev libgtest-dev libgmock-dev
   libopenblas0-serial
   python3-h5py python3-matplotlib python3-numpy
-  paraview xvfb hdf5-tools
+  paraview python3-paraview xvfb hdf5-tools
   # scripts/bench.py compares with CalculiX; tests count instructions with valgrind
   calculix-ccx valgrind
 )
