@@ -8,10 +8,12 @@ packages=(
   libeigen3-dev libsuitesparse-dev libhdf5-dev libgmsh-dev gmsh
   libmuparser-dev libcli11-dev libfmt-dev libgtest-dev libgmock-dev
   libopenblas0-serial
-  python3-h5py python3-matplotlib python3-numpy
+  python3-h5py python3-matplotlib python3-numpy python3-scipy
   paraview python3-paraview xvfb hdf5-tools
   # scripts/bench.py compares with CalculiX; tests count instructions with valgrind
   calculix-ccx valgrind
+  # tests/structure checks the formatting of the sources
+  clang-format-14
 )
 
 sudo_cmd=()

@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <string>
 
-#include "output/results.hpp"
+#include "records/result_records.hpp"
 
 namespace cc::app {
 

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "model/model.hpp"
-#include "output/results.hpp"
+#include "records/result_records.hpp"
 #include "solver/load_stepper.hpp"
 
 namespace cc::app {

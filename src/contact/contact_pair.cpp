@@ -275,10 +275,10 @@ void ContactPair::storeTrial(Point& point, const PointEvaluation& e, const LawPa
   t.weight = kin.weight;
   t.state = e.response.state;
   t.normalTraction = e.response.normal;
-  if (e.response.state != PointState::Open && e.response.frictional) {
+  if (e.response.state != ContactState::Open && e.response.frictional) {
     t.traction = e.response.tangential.vector;
     t.tractionCovariant = e.response.tangential.covariant;
-    if (e.response.state == PointState::Slip && law.penaltyTangential > 0) {
+    if (e.response.state == ContactState::Slip && law.penaltyTangential > 0) {
       // Slip of this step: the part of the trial traction the return mapping removed.
       t.slipIncrement =
           (e.response.tangential.trialNorm - law.friction * std::abs(t.normalTraction)) /
@@ -316,7 +316,7 @@ LocalStatus ContactPair::evaluate(std::size_t item, const AssemblyState& state,
           fmt::format("contact pair '{}', point {}: tangent is not finite", config_.name, item));
     }
     point.trial.symmetric =
-        config_.tangentMode == ContactSpec::TangentMode::Paper &&
+        config_.tangentMode == TangentMode::Paper &&
                 setup.kind != PointKind::SegmentToAnalytical  // STAS: n x m is unsymmetric
             ? contact::tangentSymmetric(e.response.state, config_.parts)
             : (*tangent - tangent->transpose()).norm() <= kSymmetryTolerance * tangent->norm();
@@ -336,9 +336,9 @@ void ContactPair::commitStep() {
     h.projected = t.valid;
     h.segment = point.segment;
     h.xi = t.valid ? t.xi : point.xi;
-    h.traction = t.state == PointState::Open ? Eigen::Vector3d::Zero() : t.traction;
+    h.traction = t.state == ContactState::Open ? Eigen::Vector3d::Zero() : t.traction;
     h.tractionCovariant =
-        t.state == PointState::Open ? Eigen::Vector2d::Zero() : t.tractionCovariant;
+        t.state == ContactState::Open ? Eigen::Vector2d::Zero() : t.tractionCovariant;
     h.state = t.state;
     h.accumulatedSlip += t.slipIncrement;
     h.masterPoint = t.masterPoint;
@@ -390,7 +390,7 @@ ContactPairRecord ContactPair::record() const {
     r.weight[i] = t.weight;
     // Force on the slave body: -(N n - T) w (the opposite of the internal-force contribution).
     const Eigen::Vector3d force =
-        t.state == PointState::Open
+        t.state == ContactState::Open
             ? Eigen::Vector3d::Zero()
             : Eigen::Vector3d((-t.normalTraction * t.normal + t.traction) * t.weight);
     r.totalForce += force;

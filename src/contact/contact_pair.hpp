@@ -15,7 +15,7 @@
 #include "contact/point_evaluation.hpp"
 #include "fem/contribution.hpp"
 #include "mesh/mesh.hpp"
-#include "output/results.hpp"
+#include "records/result_records.hpp"
 
 namespace cc::contact {
 
@@ -24,7 +24,7 @@ struct ContactPairConfig {
   PointKind kind = PointKind::NodeToSegment;
   LawParameters law;
   int integrationPoints = 2;  // Gauss points per direction (STS, STAS)
-  ContactSpec::TangentMode tangentMode = ContactSpec::TangentMode::Paper;
+  TangentMode tangentMode = TangentMode::Paper;
   TangentParts parts;
 };
 
@@ -79,7 +79,7 @@ class ContactPair : public Contribution {
     double normalTraction = 0;
     double weight = 0;
     double slipIncrement = 0;
-    PointState state = PointState::Open;
+    ContactState state = ContactState::Open;
     bool symmetric = true;
   };
 

@@ -29,14 +29,14 @@ enum HistoryRow : int {
 };
 static_assert(kRowCount == ContactPair::kHistoryRows);
 
-PointState stateFrom(double value, const std::string& pair, int point) {
+ContactState stateFrom(double value, const std::string& pair, int point) {
   const int state = static_cast<int>(value);
-  if (state != value || state < static_cast<int>(PointState::Open) ||
-      state > static_cast<int>(PointState::Slip)) {
+  if (state != value || state < static_cast<int>(ContactState::Open) ||
+      state > static_cast<int>(ContactState::Slip)) {
     throw std::invalid_argument(fmt::format(
         "contact pair '{}', point {}: invalid state {} in the history", pair, point, value));
   }
-  return static_cast<PointState>(state);
+  return static_cast<ContactState>(state);
 }
 
 }  // namespace

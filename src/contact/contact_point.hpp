@@ -43,7 +43,7 @@ struct PointHistory {
   Eigen::Vector2d tractionCovariant = Eigen::Vector2d::Zero();  // T_i^(n) (convective update)
   Eigen::Vector3d masterPoint = Eigen::Vector3d::Zero();  // STAS: rho at step n
   Eigen::Vector3d surfaceOffset = Eigen::Vector3d::Zero();  // STAS: rigid translation at step n
-  PointState state = PointState::Open;
+  ContactState state = ContactState::Open;
   double accumulatedSlip = 0;
 };
 
@@ -64,7 +64,7 @@ template <class Scalar>
 struct PointResponse {
   Scalar normal = Scalar(0.0);          // N
   TangentialTraction<Scalar> tangential;
-  PointState state = PointState::Open;
+  ContactState state = ContactState::Open;
   bool frictional = false;
 };
 
@@ -75,7 +75,7 @@ PointResponse<Scalar> pointResponse(const PointKinematics<Scalar>& kin,
   PointResponse<Scalar> response;
   if (kin.gap > 0) return response;  // open: g > 0, no traction (Table 1, loop 3)
   response.normal = normalTraction(kin.gap, law.penaltyNormal);
-  response.state = PointState::Stick;
+  response.state = ContactState::Stick;
   response.tangential.covariant.setZero();
   response.tangential.trialCovariant.setZero();
   response.tangential.trialNorm = Scalar(0.0);
@@ -102,7 +102,7 @@ PointResponse<Scalar> pointResponse(const PointKinematics<Scalar>& kin,
     }
     response.tangential =
         returnMapping(kin.frame, trial, response.normal, law.friction, law.penaltyTangential,
-                      history.state == PointState::Slip);
+                      history.state == ContactState::Slip);
     response.state = response.tangential.state;
   }
   return response;
@@ -113,7 +113,7 @@ template <class Scalar>
 void pointForce(const PointKinematics<Scalar>& kin, const PointResponse<Scalar>& response,
                 const PointLayout& layout, Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& force) {
   force.setZero(3 * layout.nodeCount);
-  if (response.state == PointState::Open) return;
+  if (response.state == ContactState::Open) return;
   const Vec3<Scalar> traction =
       (response.normal * kin.frame.normal - response.tangential.vector) * kin.weight;
   for (int a = 0; a < layout.slaveCount; ++a) {

@@ -8,18 +8,20 @@
 #include <cmath>
 
 #include "contact/geometry.hpp"
+#include "records/result_records.hpp"
 
 namespace cc::contact {
 
-enum class PointState { Open = 0, Stick = 1, Slip = 2 };
-
-// How the trial traction carries the last converged traction into the current step.
+// How the trial traction carries the last converged traction into the current step. The default
+// is ConvectedTranslation: the pull-back/push-forward of section 2.3.2, which keeps the traction
+// attached to the material point of the master it was built on (6.1(b): 4 instead of 6 Newton
+// iterations per sliding step against eq. (51) applied literally).
 enum class TangentialIntegration {
-  ParallelTranslation,  // eqs. (51), (77): continuous across segment boundaries (the default)
   ConvectedTranslation,  // T_i^(n) convected with the master surface to the old material point,
-                         // then translated in parallel to the new projection point
-  Convective,           // eq. (75): covariant components kept as numbers; jumps across
-                        // segments with differing parametrizations (for comparison only)
+                         // then translated in parallel to the new projection point (default)
+  ParallelTranslation,   // eqs. (51), (77) literally: continuous across segment boundaries
+  Convective,            // eq. (75): covariant components kept as numbers; jumps across
+                         // segments with differing parametrizations (for comparison only)
 };
 
 struct LawParameters {
@@ -41,23 +43,28 @@ struct TangentialTraction {
   Scalar trialNorm;                            // ||T^tr||, eq. (77)
   Eigen::Matrix<Scalar, 2, 1> covariant;       // T_i after the return mapping, eq. (79)
   Vec3<Scalar> vector;                         // T = T_i rho^i (Cartesian)
-  PointState state = PointState::Stick;
+  ContactState state = ContactState::Stick;
 };
 
-// Trial step, eq. (77): the traction of the last converged step, a Cartesian vector in its
-// tangent plane, is translated in parallel to the current plane, eq. (51):
-// T_l^(n+1) = T^(n) . rho_l^(n+1); the penalty increment is -eps_T Delta xi^j a_ij =
-// -eps_T (Delta rho . rho_i), eqs. (76), (78), with the slip Delta rho of eq. (47) (NTS/STS) or
-// Delta rho = -u of eq. (48) (STAS).
+// Eq. (51): the traction of the last converged step, a Cartesian vector in its tangent plane,
+// translated in parallel to the current tangent plane, T_l^(n+1) = T^(n) . rho_l^(n+1).
+template <class Scalar>
+Eigen::Matrix<Scalar, 2, 1> translateTractionInParallel(const SurfaceFrame<Scalar>& frame,
+                                                        const Vec3<Scalar>& previousTraction) {
+  Eigen::Matrix<Scalar, 2, 1> translated;
+  for (int i = 0; i < 2; ++i) translated[i] = frame.rhoCov[i].dot(previousTraction);
+  return translated;
+}
+
+// Trial step, eq. (77): the translated traction (51) plus the penalty increment
+// -eps_T Delta xi^j a_ij = -eps_T (Delta rho . rho_i), eqs. (76), (78), with the slip Delta rho of
+// eq. (47) (NTS/STS) or Delta rho = -u of eq. (48) (STAS).
 template <class Scalar>
 Eigen::Matrix<Scalar, 2, 1> trialTraction(const SurfaceFrame<Scalar>& frame,
                                           const Vec3<Scalar>& previousTraction,
                                           const Vec3<Scalar>& slip, double penaltyTangential) {
-  Eigen::Matrix<Scalar, 2, 1> trial;
-  for (int i = 0; i < 2; ++i) {
-    trial[i] = frame.rhoCov[i].dot(previousTraction) -
-               penaltyTangential * slip.dot(frame.rhoCov[i]);
-  }
+  Eigen::Matrix<Scalar, 2, 1> trial = translateTractionInParallel(frame, previousTraction);
+  for (int i = 0; i < 2; ++i) trial[i] -= penaltyTangential * slip.dot(frame.rhoCov[i]);
   return trial;
 }
 
@@ -111,10 +118,10 @@ TangentialTraction<Scalar> returnMapping(const SurfaceFrame<Scalar>& frame,
   const double excess = scalarValue(result.trialNorm) - scalarValue(limit);
   const bool slides = excess > slack || (wasSliding && excess >= -slack && scalarValue(limit) > 0);
   if (!slides) {
-    result.state = PointState::Stick;
+    result.state = ContactState::Stick;
     result.covariant = trial;
   } else {
-    result.state = PointState::Slip;
+    result.state = ContactState::Slip;
     result.covariant = trial * (limit / result.trialNorm);
   }
   result.vector = result.covariant[0] * frame.rhoContra[0] + result.covariant[1] * frame.rhoContra[1];

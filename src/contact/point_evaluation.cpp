@@ -51,14 +51,14 @@ PointEvaluation evaluatePoint(const PointSetup& setup, const NodeMatrix<double>&
 }
 
 void pointTangent(const PointSetup& setup, const NodeMatrix<double>& nodes,
-                  const PointEvaluation& evaluation, ContactSpec::TangentMode mode,
+                  const PointEvaluation& evaluation, TangentMode mode,
                   const TangentParts& parts, Eigen::MatrixXd& K) {
   const int dofs = 3 * setup.layout.nodeCount;
-  if (!evaluation.valid || evaluation.response.state == PointState::Open) {
+  if (!evaluation.valid || evaluation.response.state == ContactState::Open) {
     K.setZero(dofs, dofs);
     return;
   }
-  if (mode == ContactSpec::TangentMode::Paper) {
+  if (mode == TangentMode::Paper) {
     const PointKinematics<double>& kin = evaluation.kinematics;
     Eigen::Vector3d gapDirection = kin.frame.normal;
     if (setup.kind == PointKind::SegmentToAnalytical) {

@@ -7,7 +7,7 @@
 #include <Eigen/Core>
 
 #include "contact/point_kinematics.hpp"
-#include "deck/problem_spec.hpp"
+#include "contact/tangent_parts.hpp"
 
 namespace cc::contact {
 
@@ -39,7 +39,7 @@ PointEvaluation evaluatePoint(const PointSetup& setup, const NodeMatrix<double>&
 
 // Tangent of an evaluated point: paper parts (with `parts`) or exact (AD). K sized here.
 void pointTangent(const PointSetup& setup, const NodeMatrix<double>& nodes,
-                  const PointEvaluation& evaluation, ContactSpec::TangentMode mode,
+                  const PointEvaluation& evaluation, TangentMode mode,
                   const TangentParts& parts, Eigen::MatrixXd& K);
 
 }  // namespace cc::contact

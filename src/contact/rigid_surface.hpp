@@ -11,19 +11,17 @@
 #include <cmath>
 #include <optional>
 
-#include "deck/problem_spec.hpp"
 
 namespace cc::contact {
 
 struct RigidSurface {
-  RigidSurfaceSpec::Shape shape = RigidSurfaceSpec::Shape::Plane;
+  enum class Shape { Plane, Cylinder, ParabolicCylinder, Sphere };
+  Shape shape = Shape::Plane;
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();
   Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  // outward side (towards the deformable body)
   Eigen::Vector3d axis = Eigen::Vector3d::UnitY();    // cylinders' generatrix direction
   double radius = 0;
   double curvature = 0;  // parabolic cylinder: z = c x^2 in the frame (x = axis x normal, z = normal)
-
-  static RigidSurface fromSpec(const RigidSurfaceSpec& spec);
 
   // Outward unit normal of the surface at a point on it (for output and sanity checks).
   Eigen::Vector3d outwardNormal(const Eigen::Vector3d& point) const;
@@ -63,23 +61,23 @@ std::optional<Scalar> normalLineGap(const RigidSurface& surface, const Eigen::Ve
   const Vec nu = surface.normal.template cast<Scalar>();
   const Vec axis = surface.axis.template cast<Scalar>();
   switch (surface.shape) {
-    case RigidSurfaceSpec::Shape::Plane: {
+    case RigidSurface::Shape::Plane: {
       // level = (p - o) . nu, linear in g.
       return detail::enteringRoot(Scalar(0.0), Scalar(n.dot(nu)), Scalar(relative.dot(nu)));
     }
-    case RigidSurfaceSpec::Shape::Sphere: {
+    case RigidSurface::Shape::Sphere: {
       // level = |p - o|^2 - R^2
       return detail::enteringRoot(Scalar(n.dot(n)), Scalar(2.0 * n.dot(relative)),
                                   Scalar(relative.dot(relative) - surface.radius * surface.radius));
     }
-    case RigidSurfaceSpec::Shape::Cylinder: {
+    case RigidSurface::Shape::Cylinder: {
       // level = |p_perp|^2 - R^2 with p_perp the part orthogonal to the axis.
       const Vec d = relative - axis * axis.dot(relative);
       const Vec m = n - axis * axis.dot(n);
       return detail::enteringRoot(Scalar(m.dot(m)), Scalar(2.0 * m.dot(d)),
                                   Scalar(d.dot(d) - surface.radius * surface.radius));
     }
-    case RigidSurfaceSpec::Shape::ParabolicCylinder: {
+    case RigidSurface::Shape::ParabolicCylinder: {
       // level = z - c x^2 in the local frame x = axis x nu, z = nu (body below the parabola).
       const Vec ex = axis.cross(nu);
       const Scalar x0 = relative.dot(ex), z0 = relative.dot(nu);

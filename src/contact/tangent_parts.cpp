@@ -173,7 +173,7 @@ void paperTangent(const PointKinematics<double>& kin, const PointResponse<double
                   const PointLayout& layout, const Eigen::Vector2d& xi, const LawParameters& law,
                   const TangentParts& parts, const Eigen::Vector3d& gapDirection, MatrixXd& K) {
   K.setZero(3 * layout.nodeCount, 3 * layout.nodeCount);
-  if (response.state == PointState::Open) return;
+  if (response.state == ContactState::Open) return;
   const TangentContext c = makeTangentContext(kin, layout, xi, gapDirection);
   // Flat masters pay nothing for the curvature parts (h_ij = 0 up to round-off), and
   // parallelogram segments nothing for the Christoffel part of (107e).
@@ -186,7 +186,7 @@ void paperTangent(const PointKinematics<double>& kin, const PointResponse<double
   if (parts.normalCurvature && curved) normalCurvature(c, law.penaltyNormal, kin.gap, K);
   if (!response.frictional) return;
   const Eigen::Vector2d& traction = response.tangential.covariant;
-  if (response.state == PointState::Stick) {
+  if (response.state == ContactState::Stick) {
     if (parts.stickMain) stickMain(c, law.penaltyTangential, K);
     if (parts.stickRotational) tractionRotational(c, traction, K);
     if (parts.stickCurvature && curved) tractionCurvature(c, traction, K);
@@ -200,8 +200,8 @@ void paperTangent(const PointKinematics<double>& kin, const PointResponse<double
   }
 }
 
-bool tangentSymmetric(PointState state, const TangentParts& parts) {
-  if (state != PointState::Slip) return true;
+bool tangentSymmetric(ContactState state, const TangentParts& parts) {
+  if (state != ContactState::Slip) return true;
   return !parts.slideConstitutive && !parts.slideUnsymmetricCurvature;
 }
 

@@ -13,9 +13,27 @@
 #include <Eigen/Core>
 
 #include "contact/contact_point.hpp"
-#include "deck/problem_spec.hpp"
 
 namespace cc::contact {
+
+// Paper: the parts of Tables 1-2 selected by TangentParts. Exact: the linearization of the
+// discrete algorithm itself (automatic differentiation, contact/exact_tangent.hpp).
+enum class TangentMode { Paper, Exact };
+
+// Which parts of the paper's tangent (Tables 1 and 2) are assembled. The residual never depends
+// on these flags. The model builder fills it from the deck's TangentPartsSpec.
+struct TangentParts {
+  bool normalMain = true;                 // eq. (83)
+  bool normalRotational = true;           // eq. (83a)
+  bool normalCurvature = true;            // eq. (83b)
+  bool stickMain = true;                  // eq. (100)
+  bool stickRotational = true;            // eq. (100a)
+  bool stickCurvature = true;             // eq. (100b)
+  bool slideConstitutive = true;          // eqs. (107), (107a), (107b)
+  bool slideRotational = true;            // eq. (107c)
+  bool slideCurvature = true;             // eq. (107d)
+  bool slideUnsymmetricCurvature = true;  // eq. (107e)
+};
 
 struct TangentContext {
   const SurfaceFrame<double>* frame = nullptr;
@@ -65,6 +83,6 @@ void paperTangent(const PointKinematics<double>& kin, const PointResponse<double
 
 // Whether the selected parts give a symmetric matrix in this state (slide (107) and (107e) do
 // not; everything else does).
-bool tangentSymmetric(PointState state, const TangentParts& parts);
+bool tangentSymmetric(ContactState state, const TangentParts& parts);
 
 }  // namespace cc::contact

@@ -7,7 +7,7 @@
 #include "common/errors.hpp"
 #include "deck/deck_source.hpp"
 #include "deck/deck_state.hpp"
-#include "deck/name_matching.hpp"
+#include "common/name_matching.hpp"
 #include "deck/solve_parameters.hpp"
 
 namespace cc {

@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "deck/problem_spec.hpp"
+#include "spec/problem_spec.hpp"
 
 namespace cc {
 

@@ -11,7 +11,7 @@
 
 #include "common/errors.hpp"
 #include "deck/keyword_decl.hpp"
-#include "deck/name_matching.hpp"
+#include "common/name_matching.hpp"
 #include "deck/parsed_line.hpp"
 
 namespace cc::deck {

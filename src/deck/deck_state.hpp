@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "deck/parsed_line.hpp"
-#include "deck/problem_spec.hpp"
+#include "spec/problem_spec.hpp"
 
 namespace cc::deck {
 

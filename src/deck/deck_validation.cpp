@@ -6,7 +6,7 @@
 
 #include "common/errors.hpp"
 #include "deck/deck_state.hpp"
-#include "deck/name_matching.hpp"
+#include "common/name_matching.hpp"
 
 namespace cc::deck {
 

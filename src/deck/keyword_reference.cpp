@@ -4,7 +4,7 @@
 
 #include "deck/deck_parser.hpp"
 #include "deck/keyword_decl.hpp"
-#include "deck/name_matching.hpp"
+#include "common/name_matching.hpp"
 
 namespace cc {
 

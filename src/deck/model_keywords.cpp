@@ -5,7 +5,7 @@
 #include <filesystem>
 
 #include "deck/deck_state.hpp"
-#include "deck/name_matching.hpp"
+#include "common/name_matching.hpp"
 #include "deck/spec_choices.hpp"
 
 namespace cc::deck {

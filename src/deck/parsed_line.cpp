@@ -12,7 +12,7 @@
 #include <stdexcept>
 
 #include "common/errors.hpp"
-#include "deck/name_matching.hpp"
+#include "common/name_matching.hpp"
 
 namespace cc::deck {
 

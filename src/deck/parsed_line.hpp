@@ -10,7 +10,7 @@
 
 #include "deck/deck_lexer.hpp"
 #include "deck/keyword_decl.hpp"
-#include "deck/problem_spec.hpp"
+#include "spec/problem_spec.hpp"
 
 namespace cc::deck {
 

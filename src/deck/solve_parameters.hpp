@@ -6,7 +6,7 @@
 
 #include "deck/keyword_decl.hpp"
 #include "deck/parsed_line.hpp"
-#include "deck/problem_spec.hpp"
+#include "spec/problem_spec.hpp"
 
 namespace cc::deck {
 

@@ -48,18 +48,18 @@ const Choices<NewtonSpec::Criterion>& convergenceCriteria() {
   return choices;
 }
 
-const Choices<bool TangentParts::*>& tangentParts() {
-  static const Choices<bool TangentParts::*> choices = {
-      {"normal_main", &TangentParts::normalMain},
-      {"normal_rotational", &TangentParts::normalRotational},
-      {"normal_curvature", &TangentParts::normalCurvature},
-      {"stick_main", &TangentParts::stickMain},
-      {"stick_rotational", &TangentParts::stickRotational},
-      {"stick_curvature", &TangentParts::stickCurvature},
-      {"slide_constitutive", &TangentParts::slideConstitutive},
-      {"slide_rotational", &TangentParts::slideRotational},
-      {"slide_curvature", &TangentParts::slideCurvature},
-      {"slide_unsymmetric_curvature", &TangentParts::slideUnsymmetricCurvature}};
+const Choices<bool TangentPartsSpec::*>& tangentParts() {
+  static const Choices<bool TangentPartsSpec::*> choices = {
+      {"normal_main", &TangentPartsSpec::normalMain},
+      {"normal_rotational", &TangentPartsSpec::normalRotational},
+      {"normal_curvature", &TangentPartsSpec::normalCurvature},
+      {"stick_main", &TangentPartsSpec::stickMain},
+      {"stick_rotational", &TangentPartsSpec::stickRotational},
+      {"stick_curvature", &TangentPartsSpec::stickCurvature},
+      {"slide_constitutive", &TangentPartsSpec::slideConstitutive},
+      {"slide_rotational", &TangentPartsSpec::slideRotational},
+      {"slide_curvature", &TangentPartsSpec::slideCurvature},
+      {"slide_unsymmetric_curvature", &TangentPartsSpec::slideUnsymmetricCurvature}};
   return choices;
 }
 
@@ -73,8 +73,8 @@ const Choices<bool OutputSpec::*>& outputFields() {
 
 namespace {
 
-TangentParts withoutCurvature() {
-  TangentParts parts;
+TangentPartsSpec withoutCurvature() {
+  TangentPartsSpec parts;
   parts.normalCurvature = false;
   parts.stickCurvature = false;
   parts.slideCurvature = false;
@@ -82,8 +82,8 @@ TangentParts withoutCurvature() {
   return parts;
 }
 
-TangentParts mainPartsOnly() {
-  TangentParts parts;
+TangentPartsSpec mainPartsOnly() {
+  TangentPartsSpec parts;
   for (const auto& [name, field] : tangentParts()) parts.*field = false;
   parts.normalMain = true;
   parts.stickMain = true;
@@ -96,10 +96,10 @@ TangentParts mainPartsOnly() {
 const Choices<TangentPreset>& tangentPresets() {
   using Mode = ContactSpec::TangentMode;
   static const Choices<TangentPreset> choices = {
-      {"full", {Mode::Paper, TangentParts{}}},
+      {"full", {Mode::Paper, TangentPartsSpec{}}},
       {"no_curvature", {Mode::Paper, withoutCurvature()}},
       {"main", {Mode::Paper, mainPartsOnly()}},
-      {"exact", {Mode::Exact, TangentParts{}}}};
+      {"exact", {Mode::Exact, TangentPartsSpec{}}}};
   return choices;
 }
 

@@ -7,7 +7,7 @@
 #include <utility>
 #include <vector>
 
-#include "deck/problem_spec.hpp"
+#include "spec/problem_spec.hpp"
 
 namespace cc::deck {
 
@@ -40,13 +40,13 @@ const Choices<int>& thicknessAxes();  // auto = -1, x/y/z = 0/1/2 (ElementBlockS
 const Choices<RigidSurfaceSpec::Shape>& rigidShapes();
 const Choices<ContactSpec::Kind>& contactKinds();
 const Choices<NewtonSpec::Criterion>& convergenceCriteria();
-const Choices<bool TangentParts::*>& tangentParts();  // snake_case field names
+const Choices<bool TangentPartsSpec::*>& tangentParts();  // snake_case field names
 const Choices<bool OutputSpec::*>& outputFields();
 
 // `tangent=` presets: full, no_curvature, main (TangentMode::Paper with these parts), exact.
 struct TangentPreset {
   ContactSpec::TangentMode mode = ContactSpec::TangentMode::Paper;
-  TangentParts parts;
+  TangentPartsSpec parts;
 };
 const Choices<TangentPreset>& tangentPresets();
 

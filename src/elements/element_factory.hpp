@@ -3,7 +3,7 @@
 
 #include <memory>
 
-#include "deck/problem_spec.hpp"
+#include "spec/problem_spec.hpp"
 #include "elements/element.hpp"
 
 namespace cc {

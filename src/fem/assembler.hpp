@@ -12,10 +12,9 @@
 
 #include "fem/contribution.hpp"
 #include "fem/dof_map.hpp"
+#include "fem/sparse_matrix.hpp"
 
 namespace cc {
-
-using SparseMatrix = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
 
 struct SystemMatrices {
   SparseMatrix free;                 // K_ff: numFree x numFree (full storage, both triangles)

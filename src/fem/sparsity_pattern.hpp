@@ -6,7 +6,9 @@
 #include <span>
 #include <vector>
 
-#include "fem/assembler.hpp"
+#include "fem/contribution.hpp"
+#include "fem/dof_map.hpp"
+#include "fem/sparse_matrix.hpp"
 
 namespace cc {
 

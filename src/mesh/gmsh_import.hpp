@@ -2,7 +2,7 @@
 // (3D, with the element order the .geo requests) and converts its physical groups to a Mesh.
 #pragma once
 
-#include "deck/problem_spec.hpp"
+#include "spec/problem_spec.hpp"
 #include "mesh/mesh.hpp"
 
 namespace cc {

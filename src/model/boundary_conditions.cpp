@@ -4,7 +4,7 @@
 #include <fmt/format.h>
 
 #include "common/errors.hpp"
-#include "deck/name_matching.hpp"
+#include "common/name_matching.hpp"
 
 namespace cc {
 

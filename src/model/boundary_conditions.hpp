@@ -8,10 +8,10 @@
 #include <unordered_map>
 #include <vector>
 
-#include "deck/problem_spec.hpp"
+#include "spec/problem_spec.hpp"
 #include "fem/dof_map.hpp"
 #include "mesh/mesh.hpp"
-#include "solver/time_function.hpp"
+#include "model/time_function.hpp"
 
 namespace cc {
 

@@ -10,13 +10,13 @@
 #include <vector>
 
 #include "contact/contact_pair.hpp"
-#include "deck/problem_spec.hpp"
+#include "spec/problem_spec.hpp"
 #include "fem/assembler.hpp"
 #include "mesh/mesh.hpp"
 #include "model/boundary_conditions.hpp"
 #include "model/element_set.hpp"
-#include "output/results.hpp"
-#include "output/results_writer.hpp"
+#include "records/result_records.hpp"
+#include "records/output_selection.hpp"
 #include "solver/nonlinear_problem.hpp"
 
 namespace cc {

@@ -6,7 +6,7 @@
 #include <set>
 
 #include "common/errors.hpp"
-#include "deck/name_matching.hpp"
+#include "common/name_matching.hpp"
 #include "elements/element_factory.hpp"
 #include "materials/material.hpp"
 #include "mesh/gmsh_import.hpp"
@@ -103,6 +103,37 @@ void requireAttached(const FaceSet& faces, const std::vector<bool>& active,
   }
 }
 
+contact::TangentParts contactTangentParts(const TangentPartsSpec& spec) {
+  return {.normalMain = spec.normalMain,
+          .normalRotational = spec.normalRotational,
+          .normalCurvature = spec.normalCurvature,
+          .stickMain = spec.stickMain,
+          .stickRotational = spec.stickRotational,
+          .stickCurvature = spec.stickCurvature,
+          .slideConstitutive = spec.slideConstitutive,
+          .slideRotational = spec.slideRotational,
+          .slideCurvature = spec.slideCurvature,
+          .slideUnsymmetricCurvature = spec.slideUnsymmetricCurvature};
+}
+
+contact::RigidSurface rigidSurface(const RigidSurfaceSpec& spec) {
+  using Shape = contact::RigidSurface::Shape;
+  const auto toVector = [](const Vec3& v) { return Eigen::Vector3d(v[0], v[1], v[2]); };
+  contact::RigidSurface s;
+  switch (spec.shape) {
+    case RigidSurfaceSpec::Shape::Plane: s.shape = Shape::Plane; break;
+    case RigidSurfaceSpec::Shape::Cylinder: s.shape = Shape::Cylinder; break;
+    case RigidSurfaceSpec::Shape::ParabolicCylinder: s.shape = Shape::ParabolicCylinder; break;
+    case RigidSurfaceSpec::Shape::Sphere: s.shape = Shape::Sphere; break;
+  }
+  s.origin = toVector(spec.origin);
+  s.normal = toVector(spec.normal).normalized();
+  s.axis = toVector(spec.axis).normalized();
+  s.radius = spec.radius;
+  s.curvature = spec.curvature;
+  return s;
+}
+
 contact::ContactPairConfig pairConfig(const ContactSpec& spec) {
   contact::ContactPairConfig config;
   config.name = spec.name;
@@ -115,10 +146,15 @@ contact::ContactPairConfig pairConfig(const ContactSpec& spec) {
       config.kind = contact::PointKind::SegmentToAnalytical;
       break;
   }
-  config.law = {spec.penaltyNormal, spec.penaltyTangential, spec.friction};
+  // The trial-traction integration stays at its documented default (friction_law.hpp).
+  config.law = {.penaltyNormal = spec.penaltyNormal,
+                .penaltyTangential = spec.penaltyTangential,
+                .friction = spec.friction};
   config.integrationPoints = spec.integrationPoints;
-  config.tangentMode = spec.tangentMode;
-  config.parts = spec.parts;
+  config.tangentMode = spec.tangentMode == ContactSpec::TangentMode::Exact
+                           ? contact::TangentMode::Exact
+                           : contact::TangentMode::Paper;
+  config.parts = contactTangentParts(spec.parts);
   return config;
 }
 
@@ -150,7 +186,7 @@ std::unique_ptr<contact::ContactPair> makePair(const ContactSpec& spec, const Pr
       throw InputError(spec.where, fmt::format("contact stas: no rigid surface '{}'", spec.slave));
     }
     return contact::ContactPair::segmentToAnalytical(
-        config, master, contact::RigidSurface::fromSpec(*rigid), surfaceMotion(*rigid));
+        config, master, rigidSurface(*rigid), surfaceMotion(*rigid));
   }
   const FaceSet& slave = requireFaceSet(mesh, spec.slave, spec.where, "slave");
   requireAttached(slave, active, spec.where);

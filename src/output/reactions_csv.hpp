@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "output/results.hpp"
+#include "records/result_records.hpp"
 
 namespace cc {
 

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "output/hdf5_io.hpp"
-#include "output/results.hpp"
+#include "records/result_records.hpp"
 
 namespace cc {
 

@@ -9,7 +9,8 @@
 
 #include "mesh/mesh.hpp"
 #include "output/hdf5_io.hpp"
-#include "output/results.hpp"
+#include "records/output_selection.hpp"
+#include "records/result_records.hpp"
 
 namespace cc {
 
@@ -20,16 +21,6 @@ struct RunInfo {
   std::string title;
   std::string version;
   std::string deckPath;
-};
-
-// Which fields and sidecars to write (the app fills it from the deck's `output` block).
-struct OutputSelection {
-  bool displacement = true;
-  bool reaction = true;
-  bool stress = false;
-  bool contact = true;
-  bool csv = true;   // <stem>_reactions.csv
-  bool xdmf = true;  // <stem>.xdmf
 };
 
 // How the run ended; stored as attributes of /summary by close().

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "deck/problem_spec.hpp"
+#include "spec/problem_spec.hpp"
 #include "solver/newton.hpp"
 #include "solver/nonlinear_problem.hpp"
 

@@ -22,7 +22,7 @@
 #include <chrono>
 #include <string>
 
-#include "deck/problem_spec.hpp"
+#include "spec/problem_spec.hpp"
 #include "solver/nonlinear_problem.hpp"
 #include "solver/tangent_solver.hpp"
 

@@ -8,7 +8,7 @@
 
 #include "fem/assembler.hpp"
 #include "fem/dof_map.hpp"
-#include "output/results.hpp"
+#include "records/result_records.hpp"
 
 namespace cc {
 

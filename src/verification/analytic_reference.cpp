@@ -13,7 +13,7 @@
 #include <memory>
 
 #include "common/errors.hpp"
-#include "solver/time_function.hpp"
+#include "model/time_function.hpp"
 #include "verification/analytic_contact.hpp"
 
 namespace cc::verification {

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "deck/problem_spec.hpp"
+#include "spec/problem_spec.hpp"
 #include "model/model.hpp"
 #include "verification/quantity.hpp"
 

@@ -6,7 +6,7 @@
 #include <map>
 
 #include "mesh/mesh.hpp"
-#include "output/results.hpp"
+#include "records/result_records.hpp"
 
 namespace cc::verification {
 

@@ -8,7 +8,7 @@
 
 #include "common/source_location.hpp"
 #include "model/model.hpp"
-#include "output/results.hpp"
+#include "records/result_records.hpp"
 #include "verification/contact_measures.hpp"
 
 namespace cc::verification {

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "model/model.hpp"
-#include "output/results.hpp"
+#include "records/result_records.hpp"
 
 namespace cc::verification {
 

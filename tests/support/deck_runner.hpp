@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "model/model.hpp"
-#include "output/results.hpp"
+#include "records/result_records.hpp"
 #include "solver/load_stepper.hpp"
 
 namespace cc::test {

@@ -42,7 +42,7 @@ EllipseCase makeSetup() {
   s.point.law = {3.0e3, 2.0e3, 0.4};
   s.point.history.projected = true;
   s.point.history.xi = Vector2d(0.1, -0.2);
-  s.point.history.state = PointState::Stick;
+  s.point.history.state = ContactState::Stick;
   s.nodes.resize(3, 5);
   const double corner[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
   for (int k = 0; k < 4; ++k) s.nodes.col(k) = kCentre + corner[k][0] * kE1 + corner[k][1] * kE2;
@@ -52,7 +52,7 @@ EllipseCase makeSetup() {
 }
 
 // State of the point whose projection lies at xi = xi0 + r d, penetration g.
-PointState stateAt(EllipseCase& s, const Vector2d& direction, double r, double g) {
+ContactState stateAt(EllipseCase& s, const Vector2d& direction, double r, double g) {
   const Vector2d xi = s.point.history.xi + r * direction;
   s.nodes.col(4) = kCentre + xi[0] * kE1 + xi[1] * kE2 - g * s.normal;
   s.point.parameter = xi;
@@ -74,10 +74,10 @@ TEST(FrictionLaw, StickDomainIsTheMetricEllipse) {
     const double expected = limit / (s.point.law.penaltyTangential * std::sqrt(d.dot(metric * d)));
     // Bisection on the stick/slip state between 0 (stick) and 2x the ellipse radius (slip).
     double inner = 0, outer = 2 * expected;
-    ASSERT_EQ(stateAt(s, d, outer, g), PointState::Slip);
+    ASSERT_EQ(stateAt(s, d, outer, g), ContactState::Slip);
     for (int step = 0; step < 60; ++step) {
       const double middle = 0.5 * (inner + outer);
-      (stateAt(s, d, middle, g) == PointState::Stick ? inner : outer) = middle;
+      (stateAt(s, d, middle, g) == ContactState::Stick ? inner : outer) = middle;
     }
     // The stick test has a relative tolerance of 1e-9 on mu |N| (kConeTolerance).
     EXPECT_NEAR(inner / expected, 1.0, 1e-8) << "direction " << theta;

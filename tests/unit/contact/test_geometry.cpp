@@ -221,7 +221,7 @@ TEST(Projection, DifferentiableProjectionMatchesFiniteDifferences) {
   }
 }
 
-RigidSurface makeSurface(RigidSurfaceSpec::Shape shape) {
+RigidSurface makeSurface(RigidSurface::Shape shape) {
   RigidSurface s;
   s.shape = shape;
   s.origin = Vector3d(0.1, -0.2, 0.05);
@@ -234,7 +234,7 @@ RigidSurface makeSurface(RigidSurfaceSpec::Shape shape) {
 
 // The gap xi^3 of eq. (117) puts rho + g n on the surface, on its entering side.
 TEST(RigidSurface, NormalLineMeetsSurfaceOnEnteringSide) {
-  using Shape = RigidSurfaceSpec::Shape;
+  using Shape = RigidSurface::Shape;
   const Vector3d offset(0.0, 0.0, -0.01);
   for (Shape shape : {Shape::Plane, Shape::Sphere, Shape::Cylinder, Shape::ParabolicCylinder}) {
     const RigidSurface s = makeSurface(shape);
@@ -257,7 +257,7 @@ TEST(RigidSurface, NormalLineMeetsSurfaceOnEnteringSide) {
 // alpha <- (c alpha^2 n1 + n1 x2 - n2 x1) / (2 c alpha n1 - n2) started at alpha = x1 (123)
 // converges to the same surface point as our closed-form intersection.
 TEST(RigidSurface, ParabolicCylinderMatchesPaperIteration) {
-  RigidSurface s = makeSurface(RigidSurfaceSpec::Shape::ParabolicCylinder);
+  RigidSurface s = makeSurface(RigidSurface::Shape::ParabolicCylinder);
   s.origin.setZero();
   const double c = s.curvature;
   const Vector3d rho(2.0, 0.0, 0.18);  // in the x-z plane: x1 = x, x2 = z
@@ -274,7 +274,7 @@ TEST(RigidSurface, ParabolicCylinderMatchesPaperIteration) {
 }
 
 TEST(RigidSurface, NormalLineMissingSphereGivesNoContact) {
-  const RigidSurface s = makeSurface(RigidSurfaceSpec::Shape::Sphere);
+  const RigidSurface s = makeSurface(RigidSurface::Shape::Sphere);
   const auto gap = normalLineGap<double>(s, Vector3d::Zero(), Vector3d(5, 0, 3), Vector3d(0, 0, -1));
   EXPECT_FALSE(gap.has_value());
 }

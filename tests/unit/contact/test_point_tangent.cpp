@@ -75,7 +75,7 @@ PointHistory historyWith(const Vector2d& previousXi, const Vector3d& traction) {
   h.projected = true;
   h.xi = previousXi;
   h.traction = traction;
-  h.state = PointState::Stick;
+  h.state = ContactState::Stick;
   return h;
 }
 
@@ -160,7 +160,7 @@ PointCase analyticalSurface(const RigidSurface& surface, double friction, double
 // A rigid plane under the STAS master segment, tilted by `tilt` radians against the segment.
 RigidSurface plane(double tilt = 0.05) {
   RigidSurface s;
-  s.shape = RigidSurfaceSpec::Shape::Plane;
+  s.shape = RigidSurface::Shape::Plane;
   s.origin = Vector3d(0, 0, -0.001);
   s.normal = Vector3d(0, std::sin(tilt), std::cos(tilt));
   return s;
@@ -168,7 +168,7 @@ RigidSurface plane(double tilt = 0.05) {
 
 RigidSurface parabolicCylinder() {
   RigidSurface s;
-  s.shape = RigidSurfaceSpec::Shape::ParabolicCylinder;
+  s.shape = RigidSurface::Shape::ParabolicCylinder;
   s.origin = Vector3d(0.1, 0, -0.002);
   s.normal = Vector3d(0, 0, 1);
   s.axis = Vector3d(0, 1, 0);
@@ -190,7 +190,7 @@ MatrixXd finiteDifferenceTangent(const PointCase& c, double h = 1e-6) {
   return K;
 }
 
-MatrixXd tangent(const PointCase& c, ContactSpec::TangentMode mode, const TangentParts& parts) {
+MatrixXd tangent(const PointCase& c, TangentMode mode, const TangentParts& parts) {
   const PointEvaluation e = evaluatePoint(c.setup, c.nodes);
   EXPECT_TRUE(e.valid);
   MatrixXd K;
@@ -202,7 +202,7 @@ double relativeError(const MatrixXd& K, const MatrixXd& reference) {
   return (K - reference).norm() / reference.norm();
 }
 
-PointState stateOf(const PointCase& c) { return evaluatePoint(c.setup, c.nodes).response.state; }
+ContactState stateOf(const PointCase& c) { return evaluatePoint(c.setup, c.nodes).response.state; }
 
 const Vector3d kSlaveBelowFlat(0.21, -0.33, -0.002);
 const Vector3d kSlaveBelowCurved(0.27, 0.18, -0.025);
@@ -217,8 +217,8 @@ void expectNormalTangentExactUpToSecondOrder(MakeCase makeCase, double depth) {
   double errors[3];
   for (int k = 0; k < 3; ++k) {
     const PointCase c = makeCase(depth / std::pow(2.0, k));
-    ASSERT_EQ(stateOf(c), PointState::Stick);
-    errors[k] = relativeError(tangent(c, ContactSpec::TangentMode::Paper, {}),
+    ASSERT_EQ(stateOf(c), ContactState::Stick);
+    errors[k] = relativeError(tangent(c, TangentMode::Paper, {}),
                               finiteDifferenceTangent(c));
   }
   const double order = std::log2(errors[1] / errors[2]);
@@ -264,7 +264,7 @@ TEST(NormalTangent, MainPartAloneIsNotExactOnCurvedMaster) {
       nodeToSegment(curvedQuad9(), SegmentType::Quad9, kSlaveBelowCurved, 0, 0, 0);
   TangentParts mainOnly;
   mainOnly.normalRotational = mainOnly.normalCurvature = false;
-  EXPECT_GT(relativeError(tangent(c, ContactSpec::TangentMode::Paper, mainOnly),
+  EXPECT_GT(relativeError(tangent(c, TangentMode::Paper, mainOnly),
                           finiteDifferenceTangent(c)),
             1e-4);
 }
@@ -274,26 +274,26 @@ TEST(NormalTangent, MainPartAloneIsNotExactOnCurvedMaster) {
 struct ExactCase {
   const char* name;
   PointCase c;
-  PointState expected;
+  ContactState expected;
 };
 
 TEST(ExactTangent, MatchesFiniteDifferencesForAllKindsAndStates) {
   static const RigidSurface flatSurface = plane();
   static const RigidSurface curvedSurface = parabolicCylinder();
   const ExactCase cases[] = {
-      {"nts flat stick", nodeToSegment(flatQuad4(), SegmentType::Quad4, kSlaveBelowFlat, 0.3, 1e-3, 0.5), PointState::Stick},
-      {"nts flat slip", nodeToSegment(flatQuad4(), SegmentType::Quad4, kSlaveBelowFlat, 0.3, 5e-2, 0.5), PointState::Slip},
-      {"nts curved stick", nodeToSegment(curvedQuad9(), SegmentType::Quad9, kSlaveBelowCurved, 0.5, 1e-3, 1.0), PointState::Stick},
-      {"nts curved slip", nodeToSegment(curvedQuad9(), SegmentType::Quad9, kSlaveBelowCurved, 0.3, 5e-2, 4.0), PointState::Slip},
-      {"sts flat stick", segmentToSegment(flatQuad4(), SegmentType::Quad4, 0.5, 1e-3, 1.0, false), PointState::Stick},
-      {"sts curved slip", segmentToSegment(curvedQuad9(), SegmentType::Quad9, 0.3, 5e-2, 2.0, false, 0.03), PointState::Slip},
-      {"stas plane stick", analyticalSurface(flatSurface, 0.5, 1e-3, 1.0), PointState::Stick},
-      {"stas parabola slip", analyticalSurface(curvedSurface, 0.3, 5e-2, 2.0), PointState::Slip},
+      {"nts flat stick", nodeToSegment(flatQuad4(), SegmentType::Quad4, kSlaveBelowFlat, 0.3, 1e-3, 0.5), ContactState::Stick},
+      {"nts flat slip", nodeToSegment(flatQuad4(), SegmentType::Quad4, kSlaveBelowFlat, 0.3, 5e-2, 0.5), ContactState::Slip},
+      {"nts curved stick", nodeToSegment(curvedQuad9(), SegmentType::Quad9, kSlaveBelowCurved, 0.5, 1e-3, 1.0), ContactState::Stick},
+      {"nts curved slip", nodeToSegment(curvedQuad9(), SegmentType::Quad9, kSlaveBelowCurved, 0.3, 5e-2, 4.0), ContactState::Slip},
+      {"sts flat stick", segmentToSegment(flatQuad4(), SegmentType::Quad4, 0.5, 1e-3, 1.0, false), ContactState::Stick},
+      {"sts curved slip", segmentToSegment(curvedQuad9(), SegmentType::Quad9, 0.3, 5e-2, 2.0, false, 0.03), ContactState::Slip},
+      {"stas plane stick", analyticalSurface(flatSurface, 0.5, 1e-3, 1.0), ContactState::Stick},
+      {"stas parabola slip", analyticalSurface(curvedSurface, 0.3, 5e-2, 2.0), ContactState::Slip},
   };
   for (const ExactCase& e : cases) {
     SCOPED_TRACE(e.name);
     ASSERT_EQ(stateOf(e.c), e.expected);
-    EXPECT_LT(relativeError(tangent(e.c, ContactSpec::TangentMode::Exact, {}),
+    EXPECT_LT(relativeError(tangent(e.c, TangentMode::Exact, {}),
                             finiteDifferenceTangent(e.c)),
               1e-6);
   }
@@ -304,16 +304,16 @@ TEST(ExactTangent, MatchesFiniteDifferencesForAllKindsAndStates) {
 TEST(PaperTangent, StickTangentIsSymmetric) {
   const PointCase c =
       nodeToSegment(curvedQuad9(), SegmentType::Quad9, kSlaveBelowCurved, 0.5, 1e-3, 1.0);
-  ASSERT_EQ(stateOf(c), PointState::Stick);
-  const MatrixXd K = tangent(c, ContactSpec::TangentMode::Paper, {});
+  ASSERT_EQ(stateOf(c), ContactState::Stick);
+  const MatrixXd K = tangent(c, TangentMode::Paper, {});
   EXPECT_LT((K - K.transpose()).norm(), 1e-12 * K.norm());
 }
 
 TEST(PaperTangent, SlideTangentIsUnsymmetric) {
   const PointCase c =
       nodeToSegment(curvedQuad9(), SegmentType::Quad9, kSlaveBelowCurved, 0.3, 5e-2, 4.0);
-  ASSERT_EQ(stateOf(c), PointState::Slip);
-  const MatrixXd K = tangent(c, ContactSpec::TangentMode::Paper, {});
+  ASSERT_EQ(stateOf(c), ContactState::Slip);
+  const MatrixXd K = tangent(c, TangentMode::Paper, {});
   EXPECT_GT((K - K.transpose()).norm(), 1e-3 * K.norm());
 }
 
@@ -325,7 +325,7 @@ TEST(PaperTangent, SlideTangentIsUnsymmetric) {
 struct IncrementScaling {
   const char* name;
   std::function<PointCase(double)> make;
-  PointState state;
+  ContactState state;
 };
 
 void expectFirstOrderInIncrement(const IncrementScaling& scaling) {
@@ -335,7 +335,7 @@ void expectFirstOrderInIncrement(const IncrementScaling& scaling) {
   for (int k = 0; k < 3; ++k) {
     const PointCase c = scaling.make(increments[k]);
     ASSERT_EQ(stateOf(c), scaling.state);
-    errors[k] = relativeError(tangent(c, ContactSpec::TangentMode::Paper, {}),
+    errors[k] = relativeError(tangent(c, TangentMode::Paper, {}),
                               finiteDifferenceTangent(c));
   }
   for (int k = 0; k < 2; ++k) {
@@ -390,14 +390,14 @@ TEST(PaperTangent, TangentialPartsDifferFromDiscreteAlgorithmAtFirstOrderInIncre
     return s;
   }();
   const IncrementScaling cases[] = {
-      {"nts flat stick", [](double s) { return nodeToSegmentScaled(false, s, kStickSlip); }, PointState::Stick},
-      {"nts flat slide", [](double s) { return nodeToSegmentScaled(false, s, kSlideSlip); }, PointState::Slip},
-      {"nts curved stick", [](double s) { return nodeToSegmentScaled(true, s, kStickSlip); }, PointState::Stick},
-      {"nts curved slide", [](double s) { return nodeToSegmentScaled(true, s, kSlideSlip); }, PointState::Slip},
-      {"sts curved stick", [](double s) { return segmentToSegmentScaled(s, kStickSlip); }, PointState::Stick},
-      {"sts curved slide", [](double s) { return segmentToSegmentScaled(s, kSlideSlip); }, PointState::Slip},
-      {"stas parallel plane stick", [](double s) { return analyticalSurfaceScaled(parallelPlane, s, kStickSlip); }, PointState::Stick},
-      {"stas parallel plane slide", [](double s) { return analyticalSurfaceScaled(parallelPlane, s, kSlideSlip); }, PointState::Slip},
+      {"nts flat stick", [](double s) { return nodeToSegmentScaled(false, s, kStickSlip); }, ContactState::Stick},
+      {"nts flat slide", [](double s) { return nodeToSegmentScaled(false, s, kSlideSlip); }, ContactState::Slip},
+      {"nts curved stick", [](double s) { return nodeToSegmentScaled(true, s, kStickSlip); }, ContactState::Stick},
+      {"nts curved slide", [](double s) { return nodeToSegmentScaled(true, s, kSlideSlip); }, ContactState::Slip},
+      {"sts curved stick", [](double s) { return segmentToSegmentScaled(s, kStickSlip); }, ContactState::Stick},
+      {"sts curved slide", [](double s) { return segmentToSegmentScaled(s, kSlideSlip); }, ContactState::Slip},
+      {"stas parallel plane stick", [](double s) { return analyticalSurfaceScaled(parallelPlane, s, kStickSlip); }, ContactState::Stick},
+      {"stas parallel plane slide", [](double s) { return analyticalSurfaceScaled(parallelPlane, s, kSlideSlip); }, ContactState::Slip},
   };
   for (const IncrementScaling& scaling : cases) expectFirstOrderInIncrement(scaling);
 }
@@ -417,8 +417,8 @@ TEST(PaperTangent, AnalyticalSurfaceDifferenceDoesNotGrowWithTilt) {
   for (int k = 0; k < 2; ++k) {
     const RigidSurface tilted = plane(tilts[k]);
     const PointCase c = analyticalSurfaceScaled(tilted, s, kStickSlip);
-    ASSERT_EQ(stateOf(c), PointState::Stick);
-    errors[k] = relativeError(tangent(c, ContactSpec::TangentMode::Paper, {}),
+    ASSERT_EQ(stateOf(c), ContactState::Stick);
+    errors[k] = relativeError(tangent(c, TangentMode::Paper, {}),
                               finiteDifferenceTangent(c));
   }
   const double order = std::log2(errors[0] / errors[1]);

@@ -7,7 +7,7 @@
 #include <sstream>
 
 #include "deck/keyword_decl.hpp"
-#include "deck/name_matching.hpp"
+#include "common/name_matching.hpp"
 #include "deck/parsed_line.hpp"
 #include "deck_test_utils.hpp"
 #include "fem/quadrature.hpp"

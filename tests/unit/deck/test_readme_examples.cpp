@@ -7,7 +7,7 @@
 #include <regex>
 #include <sstream>
 
-#include "deck/name_matching.hpp"
+#include "common/name_matching.hpp"
 #include "deck_test_utils.hpp"
 
 namespace cc::test {

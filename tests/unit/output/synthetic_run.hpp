@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "mesh/mesh.hpp"
-#include "output/results.hpp"
+#include "records/result_records.hpp"
 #include "output/results_writer.hpp"
 
 namespace cc::test {

@@ -9,7 +9,8 @@
 
 namespace cc {
 
-// Contact state per point, as stored in the output ("state" dataset).
+// Contact state per point: the contact kernels' stick/slip/open decision, stored as is in the output
+// ("state" dataset).
 enum class ContactState : int { Open = 0, Stick = 1, Slip = 2 };
 
 struct ContactPairRecord {

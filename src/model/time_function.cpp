@@ -1,6 +1,6 @@
 // Time functions: muParser expressions in t, x, y, z, and piecewise-linear tables that stay
 // constant beyond their first and last points.
-#include "solver/time_function.hpp"
+#include "model/time_function.hpp"
 
 #include <fmt/format.h>
 #include <muParser.h>

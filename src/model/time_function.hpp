@@ -6,7 +6,7 @@
 #include <Eigen/Core>
 #include <memory>
 
-#include "deck/problem_spec.hpp"
+#include "spec/problem_spec.hpp"
 
 namespace cc {
 

@@ -89,7 +89,7 @@ struct RigidSurfaceSpec {
 
 // Which parts of the paper's tangent (Tables 1 and 2) are assembled. The residual never
 // depends on these flags.
-struct TangentParts {
+struct TangentPartsSpec {
   bool normalMain = true;          // eq. (83)
   bool normalRotational = true;    // eq. (83a)
   bool normalCurvature = true;     // eq. (83b)
@@ -115,7 +115,7 @@ struct ContactSpec {
   double friction = 0;           // mu >= 0; mu = 0 computes no tangential terms
   int integrationPoints = 2;     // Gauss points per direction (STS, STAS)
   TangentMode tangentMode = TangentMode::Paper;
-  TangentParts parts;
+  TangentPartsSpec parts;
   SourceLocation where;
 };
 

@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "common/errors.hpp"
-#include "solver/time_function.hpp"
+#include "model/time_function.hpp"
 
 namespace cc {
 namespace {

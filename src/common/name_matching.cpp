@@ -1,5 +1,5 @@
 // Case-insensitive name lookup with unique-prefix abbreviations and edit-distance suggestions.
-#include "deck/name_matching.hpp"
+#include "common/name_matching.hpp"
 
 #include <algorithm>
 #include <cctype>
