@@ -26,11 +26,12 @@ int checkCommand(const std::string& deck, bool listKeywords) {
     checkOutputWritable(path, {});
     const auto model = buildModel(spec);
     const verification::ReferenceTracker references(*model);  // checks the `reference` lines
-    fmt::print("{}: valid. {} nodes, {} elements, {} equations, {} prescribed dofs, {} contact "
-               "pairs with {} points, {} phases\n",
-               deck, model->mesh().numNodes(), model->elementCount(), model->dofMap().numFree(),
-               model->dofMap().numPrescribed(), model->contactPairs().size(),
-               model->contactPointCount(), spec.phases.size());
+    fmt::print(
+        "{}: valid. {} nodes, {} elements, {} equations, {} prescribed dofs, {} contact "
+        "pairs with {} points, {} phases\n",
+        deck, model->mesh().numNodes(), model->elementCount(), model->dofMap().numFree(),
+        model->dofMap().numPrescribed(), model->contactPairs().size(), model->contactPointCount(),
+        spec.phases.size());
   } catch (const InputError& error) {
     std::cerr << error.what() << "\n";
     return kExitInput;

@@ -28,8 +28,9 @@ std::string joinArguments(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App cli{"CovContact: 3D frictional contact at large deformations (covariant description, "
-               "Konyukhov & Schweizerhof 2005)"};
+  CLI::App cli{
+      "CovContact: 3D frictional contact at large deformations (covariant description, "
+      "Konyukhov & Schweizerhof 2005)"};
   cli.footer(kExitCodes);
   cli.require_subcommand(1);
   cli.set_version_flag("--version", COVCONTACT_VERSION);
@@ -37,14 +38,16 @@ int main(int argc, char** argv) {
   cc::app::RunOptions run;
   auto* runCommand = cli.add_subcommand("run", "Solve the problem a deck describes");
   runCommand->add_option("deck", run.deck, "Input deck")->required()->check(CLI::ExistingFile);
-  runCommand->add_option("-o,--output", run.output, "Results file (HDF5; .xdmf and .csv beside it)");
+  runCommand->add_option("-o,--output", run.output,
+                         "Results file (HDF5; .xdmf and .csv beside it)");
   runCommand->add_option("--threads", run.threads, "Assembly threads (default: all cores)")
       ->check(CLI::PositiveNumber);
   runCommand->add_flag("-q,--quiet", run.quiet, "Print only the final summary");
   auto* restartOption =
-      runCommand->add_option("--restart", run.restartFile,
-                             "Continue from a converged step stored in this results file (the "
-                             "deck and mesh must be those of the run that wrote it)")
+      runCommand
+          ->add_option("--restart", run.restartFile,
+                       "Continue from a converged step stored in this results file (the "
+                       "deck and mesh must be those of the run that wrote it)")
           ->check(CLI::ExistingFile);
   runCommand
       ->add_option("--from-step", run.restartStep,
@@ -60,15 +63,18 @@ int main(int argc, char** argv) {
 
   cc::app::CompareOptionsCli compare;
   auto* compareCommand =
-      cli.add_subcommand("compare", "Compare a run's results with a reference results file: "
-                                    "iteration counts exactly, chosen fields within tolerance");
+      cli.add_subcommand("compare",
+                         "Compare a run's results with a reference results file: "
+                         "iteration counts exactly, chosen fields within tolerance");
   compareCommand->add_option("run", compare.run, "Results file of the run")->required();
   compareCommand->add_option("reference", compare.reference, "Reference results file")->required();
   compareCommand->add_option("--rtol", compare.rtol, "Relative tolerance")->capture_default_str();
-  compareCommand->add_option("--atol", compare.atol, "Absolute tolerance (default: 1e-10 x field max)");
-  compareCommand->add_option("--fields", compare.fields,
-                             "Datasets per step to compare (default: set_reactions, "
-                             "contact/*/total_force)")
+  compareCommand->add_option("--atol", compare.atol,
+                             "Absolute tolerance (default: 1e-10 x field max)");
+  compareCommand
+      ->add_option("--fields", compare.fields,
+                   "Datasets per step to compare (default: set_reactions, "
+                   "contact/*/total_force)")
       ->delimiter(',');
 
   try {

@@ -26,9 +26,8 @@ void Progress::iteration(const IterationRecord& r) {
 void Progress::stepConverged(int step, double time, int iterations, int cutbacks) {
   if (quiet_) return;
   const std::string text =
-      fmt::format("step {}/{}  t = {:.6g}  {} iterations{}  |R|/|R0| = {:.2e}", step,
-                  plannedSteps_, time, iterations,
-                  cutbacks ? fmt::format(" after {} cut-backs", cutbacks) : "",
+      fmt::format("step {}/{}  t = {:.6g}  {} iterations{}  |R|/|R0| = {:.2e}", step, plannedSteps_,
+                  time, iterations, cutbacks ? fmt::format(" after {} cut-backs", cutbacks) : "",
                   lastRelativeResidual_);
   if (terminal_) {
     printLive(text);

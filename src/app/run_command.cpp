@@ -27,7 +27,9 @@ namespace {
 
 std::atomic<bool> stopSignal{false};
 
-extern "C" void requestStop(int) { stopSignal.store(true); }
+extern "C" void requestStop(int) {
+  stopSignal.store(true);
+}
 
 // Receives the stepper's records: writes them and reports progress.
 class RunObserver : public StepObserver {
@@ -81,20 +83,28 @@ class RunObserver : public StepObserver {
 
 const char* outcomeName(RunSummary::Outcome outcome) {
   switch (outcome) {
-    case RunSummary::Outcome::Completed: return "completed";
-    case RunSummary::Outcome::Diverged: return "diverged";
-    case RunSummary::Outcome::Interrupted: return "interrupted";
-    case RunSummary::Outcome::Singular: return "singular";
+    case RunSummary::Outcome::Completed:
+      return "completed";
+    case RunSummary::Outcome::Diverged:
+      return "diverged";
+    case RunSummary::Outcome::Interrupted:
+      return "interrupted";
+    case RunSummary::Outcome::Singular:
+      return "singular";
   }
   return "?";
 }
 
 int exitCodeOf(RunSummary::Outcome outcome) {
   switch (outcome) {
-    case RunSummary::Outcome::Completed: return kExitOk;
-    case RunSummary::Outcome::Diverged: return kExitDiverged;
-    case RunSummary::Outcome::Interrupted: return kExitInterrupted;
-    case RunSummary::Outcome::Singular: return kExitSingular;
+    case RunSummary::Outcome::Completed:
+      return kExitOk;
+    case RunSummary::Outcome::Diverged:
+      return kExitDiverged;
+    case RunSummary::Outcome::Interrupted:
+      return kExitInterrupted;
+    case RunSummary::Outcome::Singular:
+      return kExitSingular;
   }
   return kExitInternal;
 }
@@ -159,7 +169,8 @@ int runCommand(const RunOptions& options) {
 
   ResultsWriter writer;
   try {
-    writer.open(path, {spec.deckText, options.commandLine, spec.title, COVCONTACT_VERSION, options.deck},
+    writer.open(path,
+                {spec.deckText, options.commandLine, spec.title, COVCONTACT_VERSION, options.deck},
                 model->mesh(), selection);
   } catch (const OutputError& error) {
     std::cerr << "covcontact: error: " << error.what() << "\n";
@@ -196,9 +207,9 @@ int runCommand(const RunOptions& options) {
   writer.close({outcomeName(summary.outcome), summary.stepsConverged, summary.totalIterations,
                 summary.totalCutbacks, seconds, summary.message});
   if (summary.outcome == RunSummary::Outcome::Completed) {
-    fmt::print("completed: {} steps, {} Newton iterations, {} cut-backs in {:.2f} s; results in {}\n",
-               summary.stepsConverged, summary.totalIterations, summary.totalCutbacks, seconds,
-               path);
+    fmt::print(
+        "completed: {} steps, {} Newton iterations, {} cut-backs in {:.2f} s; results in {}\n",
+        summary.stepsConverged, summary.totalIterations, summary.totalCutbacks, seconds, path);
   }
   if (!references->empty()) {
     const verification::RunCost cost{seconds, summary.totalIterations, summary.stepsConverged};

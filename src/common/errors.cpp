@@ -19,12 +19,18 @@ InputError::InputError(SourceLocation where, const std::string& message)
 
 const char* toString(FailureKind kind) {
   switch (kind) {
-    case FailureKind::NotFinite: return "not finite (NaN/Inf)";
-    case FailureKind::InvertedElement: return "inverted element";
-    case FailureKind::ProjectionFailure: return "contact projection failure";
-    case FailureKind::Diverged: return "diverged";
-    case FailureKind::SingularSystem: return "singular system";
-    case FailureKind::LocalIteration: return "element-level iteration failed";
+    case FailureKind::NotFinite:
+      return "not finite (NaN/Inf)";
+    case FailureKind::InvertedElement:
+      return "inverted element";
+    case FailureKind::ProjectionFailure:
+      return "contact projection failure";
+    case FailureKind::Diverged:
+      return "diverged";
+    case FailureKind::SingularSystem:
+      return "singular system";
+    case FailureKind::LocalIteration:
+      return "element-level iteration failed";
   }
   return "unknown";
 }

@@ -14,14 +14,14 @@ namespace cc {
 // Exit codes of the `covcontact` command; documented in `covcontact --help`.
 enum ExitCode : int {
   kExitOk = 0,
-  kExitUsage = 1,          // bad command line
-  kExitInput = 2,          // invalid deck, mesh or include file
-  kExitDiverged = 3,       // a step failed after all cut-backs; converged steps are on disk
-  kExitInterrupted = 4,    // SIGINT/SIGTERM: stopped cleanly after the current iteration
-  kExitMismatch = 5,       // `compare`: results differ from the reference
-  kExitIo = 6,             // output file could not be written / reference not readable
-  kExitSingular = 7,       // singular system (e.g. unconstrained rigid-body motion)
-  kExitInternal = 70,      // a bug: please report
+  kExitUsage = 1,        // bad command line
+  kExitInput = 2,        // invalid deck, mesh or include file
+  kExitDiverged = 3,     // a step failed after all cut-backs; converged steps are on disk
+  kExitInterrupted = 4,  // SIGINT/SIGTERM: stopped cleanly after the current iteration
+  kExitMismatch = 5,     // `compare`: results differ from the reference
+  kExitIo = 6,           // output file could not be written / reference not readable
+  kExitSingular = 7,     // singular system (e.g. unconstrained rigid-body motion)
+  kExitInternal = 70,    // a bug: please report
 };
 
 class InputError : public std::runtime_error {
@@ -37,12 +37,12 @@ class InputError : public std::runtime_error {
 
 // Why a step (or one Newton iteration of it) failed; the load stepper reacts by cutting back.
 enum class FailureKind {
-  NotFinite,           // NaN or Inf in a residual, tangent or solution
-  InvertedElement,     // det J <= 0 at an integration point
-  ProjectionFailure,   // a contact point could not be projected
-  Diverged,            // residual grew / no convergence within the iteration limit
-  SingularSystem,      // the linear solver found the system singular
-  LocalIteration,      // element-level iteration (e.g. EAS) did not converge
+  NotFinite,          // NaN or Inf in a residual, tangent or solution
+  InvertedElement,    // det J <= 0 at an integration point
+  ProjectionFailure,  // a contact point could not be projected
+  Diverged,           // residual grew / no convergence within the iteration limit
+  SingularSystem,     // the linear solver found the system singular
+  LocalIteration,     // element-level iteration (e.g. EAS) did not converge
 };
 
 const char* toString(FailureKind kind);

@@ -31,7 +31,7 @@ struct PointLayout {
   int previousMasterCount = 0;  // nodes of the segment of the last converged projection, when
   std::array<int, 9> previousMasterLocal{};  // it differs from the current one (eq. (47))
   SegmentType previousMasterType = SegmentType::Quad4;
-  int nodeCount = 0;            // size of the item's node list
+  int nodeCount = 0;  // size of the item's node list
 };
 
 // History of a contact point, committed only when a step converges (DESIGN.md).
@@ -39,30 +39,30 @@ struct PointHistory {
   bool projected = false;  // a projection existed at the last converged step
   int segment = -1;        // master segment of that projection (NTS/STS)
   Eigen::Vector2d xi = Eigen::Vector2d::Zero();
-  Eigen::Vector3d traction = Eigen::Vector3d::Zero();     // T^(n), Cartesian, eq. (49)
+  Eigen::Vector3d traction = Eigen::Vector3d::Zero();           // T^(n), Cartesian, eq. (49)
   Eigen::Vector2d tractionCovariant = Eigen::Vector2d::Zero();  // T_i^(n) (convective update)
-  Eigen::Vector3d masterPoint = Eigen::Vector3d::Zero();  // STAS: rho at step n
-  Eigen::Vector3d surfaceOffset = Eigen::Vector3d::Zero();  // STAS: rigid translation at step n
+  Eigen::Vector3d masterPoint = Eigen::Vector3d::Zero();        // STAS: rho at step n
+  Eigen::Vector3d surfaceOffset = Eigen::Vector3d::Zero();      // STAS: rigid translation at step n
   ContactState state = ContactState::Open;
   double accumulatedSlip = 0;
 };
 
 template <class Scalar>
 struct PointKinematics {
-  SurfaceFrame<Scalar> frame;            // master frame at the contact point
-  Eigen::Matrix<Scalar, 2, 1> xi;        // its parameter on the master segment
-  std::array<Scalar, 9> masterShape{};   // N_m(xi) (xi may depend on the nodes)
-  Vec3<Scalar> slavePoint;               // r_s
-  Scalar gap;                            // g, eq. (27) (STAS: xi^3 of eq. (117))
-  Vec3<Scalar> slip;                     // Delta rho, eq. (47) or -u of eq. (48)
-  Vec3<Scalar> convectedTraction;        // T^(n) carried with the master surface (see
-                                         // TangentialIntegration::ConvectedTranslation)
-  Scalar weight;                         // ds times the quadrature weight
+  SurfaceFrame<Scalar> frame;           // master frame at the contact point
+  Eigen::Matrix<Scalar, 2, 1> xi;       // its parameter on the master segment
+  std::array<Scalar, 9> masterShape{};  // N_m(xi) (xi may depend on the nodes)
+  Vec3<Scalar> slavePoint;              // r_s
+  Scalar gap;                           // g, eq. (27) (STAS: xi^3 of eq. (117))
+  Vec3<Scalar> slip;                    // Delta rho, eq. (47) or -u of eq. (48)
+  Vec3<Scalar> convectedTraction;       // T^(n) carried with the master surface (see
+                                        // TangentialIntegration::ConvectedTranslation)
+  Scalar weight;                        // ds times the quadrature weight
 };
 
 template <class Scalar>
 struct PointResponse {
-  Scalar normal = Scalar(0.0);          // N
+  Scalar normal = Scalar(0.0);  // N
   TangentialTraction<Scalar> tangential;
   ContactState state = ContactState::Open;
   bool frictional = false;
@@ -70,8 +70,8 @@ struct PointResponse {
 
 // Normal penalty, trial step and return mapping at one point, Table 1 / Table 2.
 template <class Scalar>
-PointResponse<Scalar> pointResponse(const PointKinematics<Scalar>& kin,
-                                    const PointHistory& history, const LawParameters& law) {
+PointResponse<Scalar> pointResponse(const PointKinematics<Scalar>& kin, const PointHistory& history,
+                                    const LawParameters& law) {
   PointResponse<Scalar> response;
   if (kin.gap > 0) return response;  // open: g > 0, no traction (Table 1, loop 3)
   response.normal = normalTraction(kin.gap, law.penaltyNormal);
@@ -100,9 +100,8 @@ PointResponse<Scalar> pointResponse(const PointKinematics<Scalar>& kin,
                                         law.penaltyTangential);
         break;
     }
-    response.tangential =
-        returnMapping(kin.frame, trial, response.normal, law.friction, law.penaltyTangential,
-                      history.state == ContactState::Slip);
+    response.tangential = returnMapping(kin.frame, trial, response.normal, law.friction,
+                                        law.penaltyTangential, history.state == ContactState::Slip);
     response.state = response.tangential.state;
   }
   return response;

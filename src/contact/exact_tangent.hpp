@@ -17,21 +17,29 @@ using AutoDiff = Eigen::AutoDiffScalar<Eigen::VectorXd>;
 
 namespace detail {
 template <class T>
-const T& unwrapKinematics(const T& kin) { return kin; }
+const T& unwrapKinematics(const T& kin) {
+  return kin;
+}
 template <class T>
-const T& unwrapKinematics(const std::optional<T>& kin) { return *kin; }
+const T& unwrapKinematics(const std::optional<T>& kin) {
+  return *kin;
+}
 template <class T>
-bool hasKinematics(const T&) { return true; }
+bool hasKinematics(const T&) {
+  return true;
+}
 template <class T>
-bool hasKinematics(const std::optional<T>& kin) { return kin.has_value(); }
+bool hasKinematics(const std::optional<T>& kin) {
+  return kin.has_value();
+}
 }  // namespace detail
 
 // `kinematics` is a generic callable: NodeMatrix<Scalar> -> PointKinematics<Scalar> (or an
 // optional of it), called here with Scalar = AutoDiff. K is sized here (3n x 3n).
 template <class KinematicsFn>
 void exactTangent(const NodeMatrix<double>& nodes, const PointLayout& layout,
-                  const PointHistory& history, const LawParameters& law,
-                  KinematicsFn&& kinematics, Eigen::MatrixXd& K) {
+                  const PointHistory& history, const LawParameters& law, KinematicsFn&& kinematics,
+                  Eigen::MatrixXd& K) {
   const int dofs = 3 * layout.nodeCount;
   K.setZero(dofs, dofs);
   NodeMatrix<AutoDiff> active(3, layout.nodeCount);

@@ -124,7 +124,8 @@ TangentialTraction<Scalar> returnMapping(const SurfaceFrame<Scalar>& frame,
     result.state = ContactState::Slip;
     result.covariant = trial * (limit / result.trialNorm);
   }
-  result.vector = result.covariant[0] * frame.rhoContra[0] + result.covariant[1] * frame.rhoContra[1];
+  result.vector =
+      result.covariant[0] * frame.rhoContra[0] + result.covariant[1] * frame.rhoContra[1];
   return result;
 }
 

@@ -24,7 +24,9 @@ using NodeMatrix = Eigen::Matrix<Scalar, 3, Eigen::Dynamic>;
 
 // The plain value of a scalar (double, or an automatic-differentiation scalar's value), for
 // decisions that must not depend on derivatives.
-inline double scalarValue(double x) { return x; }
+inline double scalarValue(double x) {
+  return x;
+}
 template <class Scalar>
 double scalarValue(const Scalar& x) {
   return x.value();
@@ -32,7 +34,9 @@ double scalarValue(const Scalar& x) {
 
 // Index of the symmetric second derivative rho_ij in SurfaceFrame::rhoSecond: 11 -> 0, 12 -> 1,
 // 22 -> 2.
-constexpr int symmetricIndex(int i, int j) { return i + j; }
+constexpr int symmetricIndex(int i, int j) {
+  return i + j;
+}
 
 template <class Scalar>
 struct SurfaceFrame {
@@ -109,7 +113,8 @@ std::array<Mat2<Scalar>, 2> christoffel(const std::array<Vec3<Scalar>, 3>& rhoSe
   std::array<Mat2<Scalar>, 2> gamma;
   for (int k = 0; k < 2; ++k) {
     for (int i = 0; i < 2; ++i) {
-      for (int j = 0; j < 2; ++j) gamma[k](i, j) = rhoSecond[symmetricIndex(i, j)].dot(rhoContra[k]);
+      for (int j = 0; j < 2; ++j)
+        gamma[k](i, j) = rhoSecond[symmetricIndex(i, j)].dot(rhoContra[k]);
     }
   }
   return gamma;

@@ -30,9 +30,8 @@ PointEvaluation evaluatePoint(const PointSetup& setup, const NodeMatrix<double>&
   e.force.setZero(3 * setup.layout.nodeCount);
   if (setup.kind == PointKind::SegmentToAnalytical) {
     e.xi = setup.parameter;
-    auto kin = analyticalSurfaceKinematics(nodes, setup.layout, setup.parameter,
-                                           setup.gaussWeight, *setup.surface,
-                                           setup.surfaceOffset, setup.history);
+    auto kin = analyticalSurfaceKinematics(nodes, setup.layout, setup.parameter, setup.gaussWeight,
+                                           *setup.surface, setup.surfaceOffset, setup.history);
     if (!kin) return e;
     e.kinematics = *kin;
   } else {
@@ -41,8 +40,7 @@ PointEvaluation evaluatePoint(const PointSetup& setup, const NodeMatrix<double>&
                                slavePointOf(setup, nodes), setup.parameter);
     if (!projection.converged) return e;
     e.xi = projection.xi;
-    e.kinematics =
-        projectedPointKinematics(nodes, setup.layout, setup.slave, e.xi, setup.history);
+    e.kinematics = projectedPointKinematics(nodes, setup.layout, setup.slave, e.xi, setup.history);
   }
   e.valid = true;
   e.response = pointResponse(e.kinematics, setup.history, setup.law);
@@ -51,8 +49,8 @@ PointEvaluation evaluatePoint(const PointSetup& setup, const NodeMatrix<double>&
 }
 
 void pointTangent(const PointSetup& setup, const NodeMatrix<double>& nodes,
-                  const PointEvaluation& evaluation, TangentMode mode,
-                  const TangentParts& parts, Eigen::MatrixXd& K) {
+                  const PointEvaluation& evaluation, TangentMode mode, const TangentParts& parts,
+                  Eigen::MatrixXd& K) {
   const int dofs = 3 * setup.layout.nodeCount;
   if (!evaluation.valid || evaluation.response.state == ContactState::Open) {
     K.setZero(dofs, dofs);
@@ -72,21 +70,23 @@ void pointTangent(const PointSetup& setup, const NodeMatrix<double>& nodes,
     return;
   }
   if (setup.kind == PointKind::SegmentToAnalytical) {
-    exactTangent(nodes, setup.layout, setup.history, setup.law,
-                 [&](const auto& active) {
-                   return analyticalSurfaceKinematics(active, setup.layout, setup.parameter,
-                                                      setup.gaussWeight, *setup.surface,
-                                                      setup.surfaceOffset, setup.history);
-                 },
-                 K);
+    exactTangent(
+        nodes, setup.layout, setup.history, setup.law,
+        [&](const auto& active) {
+          return analyticalSurfaceKinematics(active, setup.layout, setup.parameter,
+                                             setup.gaussWeight, *setup.surface, setup.surfaceOffset,
+                                             setup.history);
+        },
+        K);
     return;
   }
-  exactTangent(nodes, setup.layout, setup.history, setup.law,
-               [&](const auto& active) {
-                 return projectedPointKinematics(active, setup.layout, setup.slave,
-                                                 evaluation.xi, setup.history);
-               },
-               K);
+  exactTangent(
+      nodes, setup.layout, setup.history, setup.law,
+      [&](const auto& active) {
+        return projectedPointKinematics(active, setup.layout, setup.slave, evaluation.xi,
+                                        setup.history);
+      },
+      K);
 }
 
 }  // namespace cc::contact

@@ -21,8 +21,8 @@ struct PointSetup {
   LawParameters law;
   // NTS/STS: the initial guess of the projection; STAS: the fixed master Gauss point.
   Eigen::Vector2d parameter = Eigen::Vector2d::Zero();
-  double gaussWeight = 0;                  // STAS
-  const RigidSurface* surface = nullptr;   // STAS
+  double gaussWeight = 0;                                   // STAS
+  const RigidSurface* surface = nullptr;                    // STAS
   Eigen::Vector3d surfaceOffset = Eigen::Vector3d::Zero();  // STAS: current rigid translation
 };
 
@@ -39,7 +39,7 @@ PointEvaluation evaluatePoint(const PointSetup& setup, const NodeMatrix<double>&
 
 // Tangent of an evaluated point: paper parts (with `parts`) or exact (AD). K sized here.
 void pointTangent(const PointSetup& setup, const NodeMatrix<double>& nodes,
-                  const PointEvaluation& evaluation, TangentMode mode,
-                  const TangentParts& parts, Eigen::MatrixXd& K);
+                  const PointEvaluation& evaluation, TangentMode mode, const TangentParts& parts,
+                  Eigen::MatrixXd& K);
 
 }  // namespace cc::contact

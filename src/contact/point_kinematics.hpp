@@ -78,8 +78,7 @@ void previousMaterialPoint(const NodeMatrix<Scalar>& itemNodes, const PointLayou
 // `xi`, re-taken differentiably), g = (r_s - rho) . n, eq. (27).
 template <class Scalar>
 PointKinematics<Scalar> projectedPointKinematics(const NodeMatrix<Scalar>& itemNodes,
-                                                 const PointLayout& layout,
-                                                 const SlaveSide& slave,
+                                                 const PointLayout& layout, const SlaveSide& slave,
                                                  const Eigen::Vector2d& xi,
                                                  const PointHistory& history) {
   PointKinematics<Scalar> kin;
@@ -110,8 +109,8 @@ PointKinematics<Scalar> projectedPointKinematics(const NodeMatrix<Scalar>& itemN
     // Eq. (10) on the slave segment: ds = |r_s,1 x r_s,2| dxi^1 dxi^2.
     const NodeMatrix<Scalar> slaveNodes =
         detail::gatherNodes(itemNodes, layout.slaveLocal, layout.slaveCount);
-    const SurfaceShape<Scalar> shape = surfaceShape(
-        slave.segmentType, Scalar(slave.gaussPoint[0]), Scalar(slave.gaussPoint[1]));
+    const SurfaceShape<Scalar> shape =
+        surfaceShape(slave.segmentType, Scalar(slave.gaussPoint[0]), Scalar(slave.gaussPoint[1]));
     Vec3<Scalar> point;
     std::array<Vec3<Scalar>, 2> tangents;
     interpolateSurface(slaveNodes, shape, point, tangents, nullptr);

@@ -1,4 +1,5 @@
-// Rigid analytic surfaces (STAS): point-wise queries (the model builder constructs them from the deck).
+// Rigid analytic surfaces (STAS): point-wise queries (the model builder constructs them from the
+// deck).
 #include "contact/rigid_surface.hpp"
 
 namespace cc::contact {
@@ -6,8 +7,10 @@ namespace cc::contact {
 double RigidSurface::level(const Eigen::Vector3d& point) const {
   const Eigen::Vector3d relative = point - origin;
   switch (shape) {
-    case RigidSurface::Shape::Plane: return relative.dot(normal);
-    case RigidSurface::Shape::Sphere: return relative.squaredNorm() - radius * radius;
+    case RigidSurface::Shape::Plane:
+      return relative.dot(normal);
+    case RigidSurface::Shape::Sphere:
+      return relative.squaredNorm() - radius * radius;
     case RigidSurface::Shape::Cylinder: {
       const Eigen::Vector3d d = relative - axis * axis.dot(relative);
       return d.squaredNorm() - radius * radius;
@@ -23,8 +26,10 @@ double RigidSurface::level(const Eigen::Vector3d& point) const {
 Eigen::Vector3d RigidSurface::outwardNormal(const Eigen::Vector3d& point) const {
   const Eigen::Vector3d relative = point - origin;
   switch (shape) {
-    case RigidSurface::Shape::Plane: return normal;
-    case RigidSurface::Shape::Sphere: return relative.normalized();
+    case RigidSurface::Shape::Plane:
+      return normal;
+    case RigidSurface::Shape::Sphere:
+      return relative.normalized();
     case RigidSurface::Shape::Cylinder:
       return (relative - axis * axis.dot(relative)).normalized();
     case RigidSurface::Shape::ParabolicCylinder: {

@@ -11,7 +11,6 @@
 #include <cmath>
 #include <optional>
 
-
 namespace cc::contact {
 
 struct RigidSurface {
@@ -21,7 +20,8 @@ struct RigidSurface {
   Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  // outward side (towards the deformable body)
   Eigen::Vector3d axis = Eigen::Vector3d::UnitY();    // cylinders' generatrix direction
   double radius = 0;
-  double curvature = 0;  // parabolic cylinder: z = c x^2 in the frame (x = axis x normal, z = normal)
+  double curvature =
+      0;  // parabolic cylinder: z = c x^2 in the frame (x = axis x normal, z = normal)
 
   // Outward unit normal of the surface at a point on it (for output and sanity checks).
   Eigen::Vector3d outwardNormal(const Eigen::Vector3d& point) const;

@@ -11,7 +11,9 @@ namespace cc::contact {
 
 enum class SegmentType { Quad4, Quad9 };
 
-constexpr int segmentNodes(SegmentType type) { return type == SegmentType::Quad4 ? 4 : 9; }
+constexpr int segmentNodes(SegmentType type) {
+  return type == SegmentType::Quad4 ? 4 : 9;
+}
 
 // Values N_k, first derivatives N_k,i and second derivatives N_k,ij (i,j = xi^1, xi^2) of the
 // segment's shape functions at (xi1, xi2). Eq. (1): rho = N_k(xi) x^(k).

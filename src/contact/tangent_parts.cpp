@@ -126,7 +126,8 @@ void tractionCurvature(const TangentContext& c, const Eigen::Vector2d& traction,
 }
 
 // Eqs. (107), (107a), (107b), sign changed, with the trial traction's direction e and norm:
-// mu eps_N (A^T e)(A^T n)^T + eps_T mu |N| / ||T^tr|| [a^ij A^T rho_i (A^T rho_j)^T - A^T e (A^T e)^T].
+// mu eps_N (A^T e)(A^T n)^T + eps_T mu |N| / ||T^tr|| [a^ij A^T rho_i (A^T rho_j)^T - A^T e (A^T
+// e)^T].
 void slideConstitutive(const TangentContext& c, const LawParameters& law, double normal,
                        const TangentialTraction<double>& tangential, MatrixXd& K) {
   const Eigen::Vector2d direction = tangential.trialCovariant / tangential.trialNorm;
@@ -147,7 +148,7 @@ void slideUnsymmetricCurvature(const TangentContext& c, const LawParameters& law
   const Eigen::Vector2d directionContra = f.inverseMetric * direction;
   const Eigen::Vector2d& trial = tangential.trialCovariant;
   Eigen::Vector2d christoffelWeights = Eigen::Vector2d::Zero();  // e^j T_m Gamma^m_jn
-  double curvatureWeight = 0;                                     // e^j T_m h_j^m
+  double curvatureWeight = 0;                                    // e^j T_m h_j^m
   for (int j = 0; j < 2; ++j) {
     for (int m = 0; m < 2; ++m) {
       for (int n = 0; n < 2; ++n) {
@@ -179,8 +180,8 @@ void paperTangent(const PointKinematics<double>& kin, const PointResponse<double
   // parallelogram segments nothing for the Christoffel part of (107e).
   const double scale = kin.frame.metric.norm();
   const bool curved = kin.frame.curvature.norm() > kFlatTolerance * std::sqrt(scale);
-  const bool connected = curved || kin.frame.christoffel[0].norm() + kin.frame.christoffel[1].norm() >
-                                       kFlatTolerance;
+  const bool connected =
+      curved || kin.frame.christoffel[0].norm() + kin.frame.christoffel[1].norm() > kFlatTolerance;
   if (parts.normalMain) normalMain(c, law.penaltyNormal, K);
   if (parts.normalRotational) normalRotational(c, law.penaltyNormal, kin.gap, K);
   if (parts.normalCurvature && curved) normalCurvature(c, law.penaltyNormal, kin.gap, K);

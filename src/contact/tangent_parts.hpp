@@ -38,12 +38,12 @@ struct TangentParts {
 struct TangentContext {
   const SurfaceFrame<double>* frame = nullptr;
   double weight = 0;
-  Eigen::VectorXd An;                                // A^T n
-  Eigen::VectorXd Agap;                              // A^T m, delta g = (A delta x) . m
-  bool fixedMasterPoint = false;                     // STAS: xi fixed, delta xi = 0
-  std::array<Eigen::VectorXd, 2> Arho;               // A^T rho_i
-  std::array<Eigen::VectorXd, 2> ArhoContra;         // A^T rho^i
-  std::array<Eigen::VectorXd, 2> Ajn;                // A_j^T n
+  Eigen::VectorXd An;                                   // A^T n
+  Eigen::VectorXd Agap;                                 // A^T m, delta g = (A delta x) . m
+  bool fixedMasterPoint = false;                        // STAS: xi fixed, delta xi = 0
+  std::array<Eigen::VectorXd, 2> Arho;                  // A^T rho_i
+  std::array<Eigen::VectorXd, 2> ArhoContra;            // A^T rho^i
+  std::array<Eigen::VectorXd, 2> Ajn;                   // A_j^T n
   std::array<std::array<Eigen::VectorXd, 2>, 2> Ajrho;  // [j][i] = A_j^T rho_i
 };
 
@@ -57,8 +57,7 @@ TangentContext makeTangentContext(const PointKinematics<double>& kin, const Poin
 void normalMain(const TangentContext& c, double penaltyNormal, Eigen::MatrixXd& K);
 void normalRotational(const TangentContext& c, double penaltyNormal, double gap,
                       Eigen::MatrixXd& K);
-void normalCurvature(const TangentContext& c, double penaltyNormal, double gap,
-                     Eigen::MatrixXd& K);
+void normalCurvature(const TangentContext& c, double penaltyNormal, double gap, Eigen::MatrixXd& K);
 void stickMain(const TangentContext& c, double penaltyTangential, Eigen::MatrixXd& K);
 // Rotational and curvature parts of delta xi^i's linearization, eq. (98)-(98a), weighted by the
 // traction T_i: eqs. (100a)/(100b) with the stick traction, (107c)/(107d) with the slide one.

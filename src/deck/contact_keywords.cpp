@@ -6,8 +6,8 @@
 #include <cmath>
 
 #include "common/errors.hpp"
-#include "deck/deck_state.hpp"
 #include "common/name_matching.hpp"
+#include "deck/deck_state.hpp"
 #include "deck/spec_choices.hpp"
 
 namespace cc::deck {

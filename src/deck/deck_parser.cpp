@@ -5,9 +5,9 @@
 #include <fmt/format.h>
 
 #include "common/errors.hpp"
+#include "common/name_matching.hpp"
 #include "deck/deck_source.hpp"
 #include "deck/deck_state.hpp"
-#include "common/name_matching.hpp"
 #include "deck/solve_parameters.hpp"
 
 namespace cc {

@@ -10,8 +10,8 @@
 #include <sstream>
 
 #include "common/errors.hpp"
-#include "deck/keyword_decl.hpp"
 #include "common/name_matching.hpp"
+#include "deck/keyword_decl.hpp"
 #include "deck/parsed_line.hpp"
 
 namespace cc::deck {

@@ -5,8 +5,8 @@
 #include <algorithm>
 
 #include "common/errors.hpp"
-#include "deck/deck_state.hpp"
 #include "common/name_matching.hpp"
+#include "deck/deck_state.hpp"
 
 namespace cc::deck {
 

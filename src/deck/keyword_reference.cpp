@@ -2,9 +2,9 @@
 // input/README.md and the plain listing of `covcontact check --keywords`.
 #include <fmt/format.h>
 
+#include "common/name_matching.hpp"
 #include "deck/deck_parser.hpp"
 #include "deck/keyword_decl.hpp"
-#include "common/name_matching.hpp"
 
 namespace cc {
 

@@ -4,8 +4,8 @@
 
 #include <filesystem>
 
-#include "deck/deck_state.hpp"
 #include "common/name_matching.hpp"
+#include "deck/deck_state.hpp"
 #include "deck/spec_choices.hpp"
 
 namespace cc::deck {

@@ -12,16 +12,20 @@ namespace cc {
 
 const char* elementTypeName(ElementBlockSpec::Type type) {
   switch (type) {
-    case ElementBlockSpec::Type::Hex8: return "hex8";
-    case ElementBlockSpec::Type::SolidShell8: return "solid_shell8";
-    case ElementBlockSpec::Type::SolidShell18: return "solid_shell18";
+    case ElementBlockSpec::Type::Hex8:
+      return "hex8";
+    case ElementBlockSpec::Type::SolidShell8:
+      return "solid_shell8";
+    case ElementBlockSpec::Type::SolidShell18:
+      return "solid_shell18";
   }
   return "?";
 }
 
 std::unique_ptr<ElementKernel> makeElementKernel(const ElementBlockSpec& spec) {
   switch (spec.type) {
-    case ElementBlockSpec::Type::Hex8: return makeHex8();
+    case ElementBlockSpec::Type::Hex8:
+      return makeHex8();
     case ElementBlockSpec::Type::SolidShell8:
     case ElementBlockSpec::Type::SolidShell18:
       try {  // the solid-shell factories reject unsupported EAS parameter counts

@@ -3,8 +3,8 @@
 
 #include <memory>
 
-#include "spec/problem_spec.hpp"
 #include "elements/element.hpp"
+#include "spec/problem_spec.hpp"
 
 namespace cc {
 

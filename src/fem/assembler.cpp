@@ -271,7 +271,9 @@ Assembler::Assembler(const DofMap& dofs, std::vector<Contribution*> contribution
 
 Assembler::~Assembler() = default;
 
-void Assembler::setMinItemsForThreads(std::size_t items) { impl_->minItemsForThreads = items; }
+void Assembler::setMinItemsForThreads(std::size_t items) {
+  impl_->minItemsForThreads = items;
+}
 
 int Assembler::threads() const {
   return omp_get_max_threads();

@@ -14,8 +14,8 @@ namespace cc {
 
 // Configuration at which contributions are evaluated. Coordinates are 3 x numNodes.
 struct AssemblyState {
-  double time = 0;          // t_{n+1}, the time being solved for
-  double previousTime = 0;  // t_n, the last converged time
+  double time = 0;                              // t_{n+1}, the time being solved for
+  double previousTime = 0;                      // t_n, the last converged time
   const Eigen::Matrix3Xd* reference = nullptr;  // X
   const Eigen::Matrix3Xd* current = nullptr;    // x = X + u
   const Eigen::Matrix3Xd* previous = nullptr;   // x at the last converged step
@@ -46,8 +46,8 @@ class Contribution {
 
   // Thread-safe for distinct items. `force` (3 * nodes) is added to the global internal force
   // vector, `tangent` (optional, 3n x 3n) is d force / d x. Both arrive sized and zeroed.
-  virtual LocalStatus evaluate(std::size_t item, const AssemblyState& state,
-                               Eigen::VectorXd& force, Eigen::MatrixXd* tangent) = 0;
+  virtual LocalStatus evaluate(std::size_t item, const AssemblyState& state, Eigen::VectorXd& force,
+                               Eigen::MatrixXd* tangent) = 0;
 
   // Whether the tangent of the last evaluation is symmetric (CHOLMOD) or not (UMFPACK).
   virtual bool tangentSymmetric() const { return true; }

@@ -2,8 +2,8 @@
 // (3D, with the element order the .geo requests) and converts its physical groups to a Mesh.
 #pragma once
 
-#include "spec/problem_spec.hpp"
 #include "mesh/mesh.hpp"
+#include "spec/problem_spec.hpp"
 
 namespace cc {
 

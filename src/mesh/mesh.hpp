@@ -28,7 +28,7 @@ using Connectivity = Eigen::Matrix<int, Eigen::Dynamic, Eigen::Dynamic, Eigen::R
 struct ElementBlock {
   std::string name;
   CellType type = CellType::Hex8;
-  Connectivity connectivity;  // one row per element, 0-based node indices
+  Connectivity connectivity;                 // one row per element, 0-based node indices
   std::vector<std::size_t> gmshElementTags;  // per element, for messages; empty if not from gmsh
 };
 
@@ -37,9 +37,9 @@ struct ElementBlock {
 struct FaceSet {
   std::string name;
   CellType type = CellType::Quad4;
-  Connectivity connectivity;        // one row per face
-  std::vector<int> ownerBlock;      // index into Mesh::blocks of the adjacent volume element
-  std::vector<int> ownerElement;    // element index within that block
+  Connectivity connectivity;      // one row per face
+  std::vector<int> ownerBlock;    // index into Mesh::blocks of the adjacent volume element
+  std::vector<int> ownerElement;  // element index within that block
   std::vector<std::size_t> gmshElementTags;  // per face, for messages; empty if not from gmsh
 };
 

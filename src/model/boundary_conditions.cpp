@@ -44,7 +44,8 @@ void BoundaryConditions::build(const ProblemSpec& spec, const Mesh& mesh) {
     const NodeSet& set = requireNodeSet(mesh, fix.set, fix.where, "fix");
     for (int c = 0; c < 3; ++c) {
       if (!fix.components[c]) continue;
-      for (int node : set.nodes) constrain(3 * node + c, {-1, fix.where}, fix.set, kComponentNames[c]);
+      for (int node : set.nodes)
+        constrain(3 * node + c, {-1, fix.where}, fix.set, kComponentNames[c]);
     }
   }
   for (const PrescribeSpec& prescribe : spec.prescribed) {

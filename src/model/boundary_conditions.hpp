@@ -8,10 +8,10 @@
 #include <unordered_map>
 #include <vector>
 
-#include "spec/problem_spec.hpp"
 #include "fem/dof_map.hpp"
 #include "mesh/mesh.hpp"
 #include "model/time_function.hpp"
+#include "spec/problem_spec.hpp"
 
 namespace cc {
 

@@ -9,11 +9,14 @@ namespace {
 
 FailureKind failureKindOf(ElementStatus::Code code) {
   switch (code) {
-    case ElementStatus::Code::InvertedJacobian: return FailureKind::InvertedElement;
-    case ElementStatus::Code::LocalIterationFailed: return FailureKind::LocalIteration;
+    case ElementStatus::Code::InvertedJacobian:
+      return FailureKind::InvertedElement;
+    case ElementStatus::Code::LocalIterationFailed:
+      return FailureKind::LocalIteration;
     case ElementStatus::Code::MaterialFailure:
     case ElementStatus::Code::NotFinite:
-    case ElementStatus::Code::Ok: break;
+    case ElementStatus::Code::Ok:
+      break;
   }
   return FailureKind::NotFinite;
 }
@@ -48,15 +51,16 @@ LocalStatus ElementSet::evaluate(std::size_t item, const AssemblyState& state,
   const ElementStatus status =
       kernel_->evaluate(reference, current, *material_, history, force, tangent);
   if (status.ok()) return LocalStatus::success();
-  const std::string element =
-      item < gmshTags_.size() ? fmt::format("gmsh element {}", gmshTags_[item])
-                              : fmt::format("element {}", item);
+  const std::string element = item < gmshTags_.size()
+                                  ? fmt::format("gmsh element {}", gmshTags_[item])
+                                  : fmt::format("element {}", item);
   return LocalStatus::failure(failureKindOf(status.code),
                               fmt::format("{} '{}': {}", element, name_, status.detail));
 }
 
 Eigen::Matrix<double, 6, Eigen::Dynamic> ElementSet::cauchyStress(
-    const Eigen::Matrix3Xd& referenceCoordinates, const Eigen::Matrix3Xd& currentCoordinates) const {
+    const Eigen::Matrix3Xd& referenceCoordinates,
+    const Eigen::Matrix3Xd& currentCoordinates) const {
   Eigen::Matrix<double, 6, Eigen::Dynamic> stress(6, connectivity_.rows());
   Eigen::Matrix3Xd reference, current;
   for (Eigen::Index e = 0; e < connectivity_.rows(); ++e) {

@@ -10,14 +10,14 @@
 #include <vector>
 
 #include "contact/contact_pair.hpp"
-#include "spec/problem_spec.hpp"
 #include "fem/assembler.hpp"
 #include "mesh/mesh.hpp"
 #include "model/boundary_conditions.hpp"
 #include "model/element_set.hpp"
-#include "records/result_records.hpp"
 #include "records/output_selection.hpp"
+#include "records/result_records.hpp"
 #include "solver/nonlinear_problem.hpp"
+#include "spec/problem_spec.hpp"
 
 namespace cc {
 

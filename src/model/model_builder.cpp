@@ -34,7 +34,8 @@ std::shared_ptr<const Material> makeMaterial(const MaterialSpec& spec) {
   switch (spec.model) {
     case MaterialSpec::Model::StVenantKirchhoff:
       return makeStVenantKirchhoff(spec.youngsModulus, spec.poissonRatio);
-    case MaterialSpec::Model::NeoHooke: return makeNeoHooke(spec.youngsModulus, spec.poissonRatio);
+    case MaterialSpec::Model::NeoHooke:
+      return makeNeoHooke(spec.youngsModulus, spec.poissonRatio);
   }
   throw InputError(spec.where, "unknown material model");
 }
@@ -46,7 +47,8 @@ int prepareBlock(Mesh& mesh, const ElementBlockSpec& spec) {
   if (block < 0) {
     if (mesh.faceSets.count(spec.group)) {
       throw InputError(spec.where, fmt::format("elements: '{}' is a surface group; elements need a "
-                                               "volume group", spec.group));
+                                               "volume group",
+                                               spec.group));
     }
     std::vector<std::string> names;
     for (const ElementBlock& b : mesh.blocks) names.push_back(b.name);
@@ -56,15 +58,16 @@ int prepareBlock(Mesh& mesh, const ElementBlockSpec& spec) {
   const CellType cell = mesh.blocks[block].type;
   const bool quadratic = spec.type == ElementBlockSpec::Type::SolidShell18;
   if (quadratic && cell != CellType::Hex27) {
-    throw InputError(spec.where,
-                     fmt::format("elements: solid_shell18 needs a quadratic (Hex27) mesh, but group "
-                                 "'{}' has {} elements; mesh it with second-order hexahedra",
-                                 spec.group, toString(cell)));
+    throw InputError(
+        spec.where, fmt::format("elements: solid_shell18 needs a quadratic (Hex27) mesh, but group "
+                                "'{}' has {} elements; mesh it with second-order hexahedra",
+                                spec.group, toString(cell)));
   }
   if (!quadratic && cell != CellType::Hex8) {
-    throw InputError(spec.where,
-                     fmt::format("elements: {} needs linear (Hex8) hexahedra, but group '{}' has {} "
-                                 "elements", elementTypeName(spec.type), spec.group, toString(cell)));
+    throw InputError(
+        spec.where, fmt::format("elements: {} needs linear (Hex8) hexahedra, but group '{}' has {} "
+                                "elements",
+                                elementTypeName(spec.type), spec.group, toString(cell)));
   }
   if (spec.thicknessAxis >= 0) orientThickness(mesh, block, spec.thicknessAxis);
   if (quadratic) convertToSolidShell18(mesh, block);
@@ -76,12 +79,15 @@ const FaceSet& requireFaceSet(const Mesh& mesh, const std::string& name,
   const auto it = mesh.faceSets.find(name);
   if (it != mesh.faceSets.end()) return it->second;
   if (findBlock(mesh, name) >= 0) {
-    throw InputError(where, fmt::format("contact: {} '{}' is a volume group; a contact surface must "
-                                        "be a face (surface) group", role, name));
+    throw InputError(where,
+                     fmt::format("contact: {} '{}' is a volume group; a contact surface must "
+                                 "be a face (surface) group",
+                                 role, name));
   }
   if (mesh.nodeSets.count(name)) {
     throw InputError(where, fmt::format("contact: {} '{}' is a curve or point group; a contact "
-                                        "surface must be a face (surface) group", role, name));
+                                        "surface must be a face (surface) group",
+                                        role, name));
   }
   throw InputError(where, fmt::format("contact: the mesh has no face group '{}'{}", name,
                                       deck::didYouMean(name, keysOf(mesh.faceSets))));
@@ -94,10 +100,12 @@ void requireAttached(const FaceSet& faces, const std::vector<bool>& active,
   for (Eigen::Index f = 0; f < faces.connectivity.rows(); ++f) {
     for (Eigen::Index k = 0; k < faces.connectivity.cols(); ++k) {
       if (!active[faces.connectivity(f, k)]) {
-        throw InputError(where, fmt::format("contact: face group '{}' has nodes that belong to no "
-                                            "element (is its volume declared by an `elements` "
-                                            "line? lateral faces of solid_shell18 cannot be contact "
-                                            "surfaces)", faces.name));
+        throw InputError(where,
+                         fmt::format("contact: face group '{}' has nodes that belong to no "
+                                     "element (is its volume declared by an `elements` "
+                                     "line? lateral faces of solid_shell18 cannot be contact "
+                                     "surfaces)",
+                                     faces.name));
       }
     }
   }
@@ -121,10 +129,18 @@ contact::RigidSurface rigidSurface(const RigidSurfaceSpec& spec) {
   const auto toVector = [](const Vec3& v) { return Eigen::Vector3d(v[0], v[1], v[2]); };
   contact::RigidSurface s;
   switch (spec.shape) {
-    case RigidSurfaceSpec::Shape::Plane: s.shape = Shape::Plane; break;
-    case RigidSurfaceSpec::Shape::Cylinder: s.shape = Shape::Cylinder; break;
-    case RigidSurfaceSpec::Shape::ParabolicCylinder: s.shape = Shape::ParabolicCylinder; break;
-    case RigidSurfaceSpec::Shape::Sphere: s.shape = Shape::Sphere; break;
+    case RigidSurfaceSpec::Shape::Plane:
+      s.shape = Shape::Plane;
+      break;
+    case RigidSurfaceSpec::Shape::Cylinder:
+      s.shape = Shape::Cylinder;
+      break;
+    case RigidSurfaceSpec::Shape::ParabolicCylinder:
+      s.shape = Shape::ParabolicCylinder;
+      break;
+    case RigidSurfaceSpec::Shape::Sphere:
+      s.shape = Shape::Sphere;
+      break;
   }
   s.origin = toVector(spec.origin);
   s.normal = toVector(spec.normal).normalized();
@@ -138,7 +154,9 @@ contact::ContactPairConfig pairConfig(const ContactSpec& spec) {
   contact::ContactPairConfig config;
   config.name = spec.name;
   switch (spec.kind) {
-    case ContactSpec::Kind::NodeToSegment: config.kind = contact::PointKind::NodeToSegment; break;
+    case ContactSpec::Kind::NodeToSegment:
+      config.kind = contact::PointKind::NodeToSegment;
+      break;
     case ContactSpec::Kind::SegmentToSegment:
       config.kind = contact::PointKind::SegmentToSegment;
       break;
@@ -180,13 +198,14 @@ std::unique_ptr<contact::ContactPair> makePair(const ContactSpec& spec, const Pr
   requireAttached(master, active, spec.where);
   const contact::ContactPairConfig config = pairConfig(spec);
   if (spec.kind == ContactSpec::Kind::SegmentToAnalytical) {
-    const auto rigid = std::find_if(problem.rigidSurfaces.begin(), problem.rigidSurfaces.end(),
-                                    [&](const RigidSurfaceSpec& r) { return r.name == spec.slave; });
+    const auto rigid =
+        std::find_if(problem.rigidSurfaces.begin(), problem.rigidSurfaces.end(),
+                     [&](const RigidSurfaceSpec& r) { return r.name == spec.slave; });
     if (rigid == problem.rigidSurfaces.end()) {
       throw InputError(spec.where, fmt::format("contact stas: no rigid surface '{}'", spec.slave));
     }
-    return contact::ContactPair::segmentToAnalytical(
-        config, master, rigidSurface(*rigid), surfaceMotion(*rigid));
+    return contact::ContactPair::segmentToAnalytical(config, master, rigidSurface(*rigid),
+                                                     surfaceMotion(*rigid));
   }
   const FaceSet& slave = requireFaceSet(mesh, spec.slave, spec.where, "slave");
   requireAttached(slave, active, spec.where);
@@ -217,7 +236,8 @@ std::unique_ptr<Model> buildModel(const ProblemSpec& spec) {
     }
     const ElementBlock& elements = mesh.blocks[block];
     for (Eigen::Index e = 0; e < elements.connectivity.rows(); ++e) {
-      for (Eigen::Index k = 0; k < elements.connectivity.cols(); ++k) active[elements.connectivity(e, k)] = true;
+      for (Eigen::Index k = 0; k < elements.connectivity.cols(); ++k)
+        active[elements.connectivity(e, k)] = true;
     }
     model->elementSets_.push_back(std::make_unique<ElementSet>(
         blockSpec.group, elements, makeElementKernel(blockSpec), materials.at(blockSpec.material)));

@@ -37,8 +37,7 @@ std::string parserMessage(const mu::Parser::exception_type& error, const std::st
 
 class ExpressionFunction final : public ScalarFunction {
  public:
-  ExpressionFunction(const FunctionSpec& spec, FunctionVariables variables)
-      : where_(spec.where) {
+  ExpressionFunction(const FunctionSpec& spec, FunctionVariables variables) : where_(spec.where) {
     parser_.DefineVar("t", &t_);
     const bool withPosition = variables == FunctionVariables::TimeAndPosition;
     if (withPosition) {

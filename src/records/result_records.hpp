@@ -9,20 +9,22 @@
 
 namespace cc {
 
-// Contact state per point: the contact kernels' stick/slip/open decision, stored as is in the output
+// Contact state per point: the contact kernels' stick/slip/open decision, stored as is in the
+// output
 // ("state" dataset).
 enum class ContactState : int { Open = 0, Stick = 1, Slip = 2 };
 
 struct ContactPairRecord {
   std::string name;
-  Eigen::Matrix3Xd position;            // slave point (current configuration)
-  Eigen::VectorXd gap;                  // g = (r_s - rho) . n, eq. (27)
-  Eigen::VectorXd normalTraction;       // N = eps_N <g>, eq. (62) (compressive <= 0 convention as the paper)
+  Eigen::Matrix3Xd position;  // slave point (current configuration)
+  Eigen::VectorXd gap;        // g = (r_s - rho) . n, eq. (27)
+  Eigen::VectorXd
+      normalTraction;  // N = eps_N <g>, eq. (62) (compressive <= 0 convention as the paper)
   Eigen::Matrix3Xd tangentialTraction;  // T = T_i rho^i, Cartesian
   Eigen::VectorXi state;                // ContactState
   Eigen::VectorXd slipIncrement;        // |Delta rho| of the step while slipping
   Eigen::VectorXd accumulatedSlip;
-  Eigen::VectorXd weight;               // integration weight (area) of the point
+  Eigen::VectorXd weight;                                // integration weight (area) of the point
   Eigen::Vector3d totalForce = Eigen::Vector3d::Zero();  // sum of forces on the slave side
   // Nodal contact forces on the slave nodes (node index, force), for force-ratio plots.
   std::vector<int> slaveNodes;
@@ -41,10 +43,10 @@ struct RestartRecord {
 };
 
 struct StepRecord {
-  int step = 0;          // 1-based count of converged steps
+  int step = 0;  // 1-based count of converged steps
   double time = 0;
   int iterations = 0;
-  int cutbacks = 0;      // cut-backs needed to reach this step
+  int cutbacks = 0;                                // cut-backs needed to reach this step
   const Eigen::Matrix3Xd* displacement = nullptr;  // 3 x numNodes
   const Eigen::Matrix3Xd* reaction = nullptr;      // 3 x numNodes, nonzero at Dirichlet dofs
   std::vector<std::pair<std::string, Eigen::Vector3d>> setReactions;  // summed per node set
@@ -67,7 +69,7 @@ struct IterationRecord {
 
 struct CutbackRecord {
   int step = 0;
-  double time = 0;      // target time that failed
+  double time = 0;  // target time that failed
   double newDt = 0;
   std::string reason;
 };

@@ -113,8 +113,8 @@ bool LoadStepper::runPhase(const PhaseSpec& phase, double phaseStart, PhaseRun& 
     const double targetTime = phaseStart + target * phase.dt;
     const NewtonStep step{run.step + 1, control.attempts++, targetTime, run.time};
     NewtonResult result = newton_->solve(step, phase.newton, run.displacement);
-    if (result.status == NewtonResult::Status::Failed &&
-        result.failure == FailureKind::Diverged && !phase.newton.lineSearch) {
+    if (result.status == NewtonResult::Status::Failed && result.failure == FailureKind::Diverged &&
+        !phase.newton.lineSearch) {
       // Newton on the non-smooth stick/slip law can cycle between states without any step size
       // helping (penalty contact is scale-free in the increment); a line search usually breaks
       // the cycle, so it is tried on the same step before the step is cut back.

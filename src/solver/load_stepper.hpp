@@ -12,9 +12,9 @@
 #include <string>
 #include <vector>
 
-#include "spec/problem_spec.hpp"
 #include "solver/newton.hpp"
 #include "solver/nonlinear_problem.hpp"
+#include "spec/problem_spec.hpp"
 
 namespace cc {
 

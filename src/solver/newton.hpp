@@ -22,9 +22,9 @@
 #include <chrono>
 #include <string>
 
-#include "spec/problem_spec.hpp"
 #include "solver/nonlinear_problem.hpp"
 #include "solver/tangent_solver.hpp"
+#include "spec/problem_spec.hpp"
 
 namespace cc {
 

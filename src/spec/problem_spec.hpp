@@ -42,7 +42,7 @@ struct MaterialSpec {
 
 struct ElementBlockSpec {
   enum class Type { Hex8, SolidShell8, SolidShell18 };
-  std::string group;     // gmsh physical volume group name
+  std::string group;  // gmsh physical volume group name
   Type type = Type::Hex8;
   std::string material;  // MaterialSpec::name
   // Solid-shells: thickness direction. -1 = from the node ordering (the mesh's extrusion
@@ -90,15 +90,15 @@ struct RigidSurfaceSpec {
 // Which parts of the paper's tangent (Tables 1 and 2) are assembled. The residual never
 // depends on these flags.
 struct TangentPartsSpec {
-  bool normalMain = true;          // eq. (83)
-  bool normalRotational = true;    // eq. (83a)
-  bool normalCurvature = true;     // eq. (83b)
-  bool stickMain = true;           // eq. (100)
-  bool stickRotational = true;     // eq. (100a)
-  bool stickCurvature = true;      // eq. (100b)
-  bool slideConstitutive = true;   // eqs. (107), (107a), (107b)
-  bool slideRotational = true;     // eq. (107c)
-  bool slideCurvature = true;      // eq. (107d)
+  bool normalMain = true;                 // eq. (83)
+  bool normalRotational = true;           // eq. (83a)
+  bool normalCurvature = true;            // eq. (83b)
+  bool stickMain = true;                  // eq. (100)
+  bool stickRotational = true;            // eq. (100a)
+  bool stickCurvature = true;             // eq. (100b)
+  bool slideConstitutive = true;          // eqs. (107), (107a), (107b)
+  bool slideRotational = true;            // eq. (107c)
+  bool slideCurvature = true;             // eq. (107d)
   bool slideUnsymmetricCurvature = true;  // eq. (107e)
 };
 
@@ -106,11 +106,11 @@ struct ContactSpec {
   enum class Kind { SegmentToSegment, NodeToSegment, SegmentToAnalytical };
   // Paper: the parts of Tables 1-2. Exact: linearization of the discrete algorithm itself.
   enum class TangentMode { Paper, Exact };
-  std::string name;        // pair name used in output (default "pair<k>")
+  std::string name;  // pair name used in output (default "pair<k>")
   Kind kind = Kind::SegmentToSegment;
-  std::string master;      // face set (STS/NTS); for STAS the deformable body's face set
-  std::string slave;       // face set (STS), node or face set (NTS); rigid surface name (STAS)
-  double penaltyNormal = 0;      // eps_N
+  std::string master;        // face set (STS/NTS); for STAS the deformable body's face set
+  std::string slave;         // face set (STS), node or face set (NTS); rigid surface name (STAS)
+  double penaltyNormal = 0;  // eps_N
   double penaltyTangential = 0;  // eps_T
   double friction = 0;           // mu >= 0; mu = 0 computes no tangential terms
   int integrationPoints = 2;     // Gauss points per direction (STS, STAS)
@@ -125,16 +125,16 @@ struct NewtonSpec {
   double residualTolerance = 1e-10;  // ||R_k|| / ||R_0||
   double energyTolerance = 1e-16;    // |du_k . R_k| / |du_0 . R_0| (FEAP's default)
   Criterion criterion = Criterion::Energy;
-  double divergenceFactor = 1e6;     // ||R_k|| > factor * ||R_0|| counts as divergence
+  double divergenceFactor = 1e6;  // ||R_k|| > factor * ||R_0|| counts as divergence
   bool lineSearch = false;
 };
 
 struct CutbackSpec {
-  int maxCutbacks = 10;        // per step, total halvings before the run stops
-  double factor = 0.5;         // dt multiplier on failure
-  int growAfter = 3;           // easy steps (iterations <= easyIterations) before regrowth
+  int maxCutbacks = 10;  // per step, total halvings before the run stops
+  double factor = 0.5;   // dt multiplier on failure
+  int growAfter = 3;     // easy steps (iterations <= easyIterations) before regrowth
   int easyIterations = 6;
-  double growFactor = 2.0;     // dt multiplier on regrowth, never beyond the phase's dt
+  double growFactor = 2.0;  // dt multiplier on regrowth, never beyond the phase's dt
 };
 
 // One phase of the solve block: `steps` load steps of size dt, each solved by Newton.

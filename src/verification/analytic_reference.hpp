@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "spec/problem_spec.hpp"
 #include "model/model.hpp"
+#include "spec/problem_spec.hpp"
 #include "verification/quantity.hpp"
 
 namespace cc::verification {

@@ -17,8 +17,8 @@ class RecordingObserver : public StepObserver {
   void stepConverged(int step, double time, int iterations, int cutbacks,
                      const Eigen::VectorXd& displacement, const Eigen::VectorXd& internalForce,
                      bool) override {
-    const StepRecord record = run_.model->stepRecord(step, time, iterations, cutbacks,
-                                                     displacement, internalForce, withStress_);
+    const StepRecord record = run_.model->stepRecord(step, time, iterations, cutbacks, displacement,
+                                                     internalForce, withStress_);
     RecordedStep copy;
     copy.step = step;
     copy.time = time;

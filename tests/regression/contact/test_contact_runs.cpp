@@ -32,16 +32,20 @@ fix base_front uz
 fix base_back uz
 prescribe block_top uy "-4e-3*min(t,1)" ux ")deck" +
          std::to_string(drag) + R"deck(*max(t-1,0)"
-)deck" + contact + R"deck(
+)deck" + contact +
+         R"deck(
 solve
   steps 1 dt=1
-  steps )deck" + std::to_string(dragSteps) +
+  steps )deck" +
+         std::to_string(dragSteps) +
          R"deck( dt=1
 end
 )deck";
 }
 
-DeckRun runText(const std::string& text) { return runDeckText(text, kDeckDir + "inline.deck"); }
+DeckRun runText(const std::string& text) {
+  return runDeckText(text, kDeckDir + "inline.deck");
+}
 
 // Central differences of the assembled internal force at displacement u (3N) against the
 // assembled K_ff, both at time t with the model's committed history.
@@ -88,7 +92,8 @@ void expectExactAssembledTangent(const std::string& contact) {
   DeckRun run = runText(slidingBlockDeck(contact, 5e-3, 2));
   ASSERT_EQ(run.summary.outcome, RunSummary::Outcome::Completed);
   const RecordedStep& last = run.steps.back();
-  Eigen::VectorXd u = Eigen::Map<const Eigen::VectorXd>(last.displacement.data(), last.displacement.size());
+  Eigen::VectorXd u =
+      Eigen::Map<const Eigen::VectorXd>(last.displacement.data(), last.displacement.size());
   const Eigen::Matrix3Xd& X = run.model->referenceCoordinates();
   for (int node : run.model->mesh().nodeSets.at("block").nodes) {
     u[3 * node] += 1e-3 * (1 + X(1, node));
@@ -169,7 +174,8 @@ TEST(ContactRuns, ExactTangentConvergesQuadraticallyInSliding) {
     // The last two ratios r_{k+1} / r_k^2 (relative residuals) stay of order one.
     for (std::size_t i = rows.size() - 2; i + 1 < rows.size(); ++i) {
       const double ratio = rows[i + 1].relativeResidual / std::pow(rows[i].relativeResidual, 2);
-      EXPECT_LT(ratio, 10.0) << "step " << exact.steps[k].step << " iteration " << rows[i].iteration;
+      EXPECT_LT(ratio, 10.0) << "step " << exact.steps[k].step << " iteration "
+                             << rows[i].iteration;
     }
   }
   EXPECT_LT(iterationsInSlidingSteps(exact), iterationsInSlidingSteps(full));

@@ -2,15 +2,14 @@
 // differences (issue 4, "Verification": frame quantities).
 #include <gtest/gtest.h>
 
+#include <Eigen/Core>
 #include <cmath>
 #include <numbers>
+#include <unsupported/Eigen/AutoDiff>
 
 #include "contact/geometry.hpp"
 #include "contact/projection.hpp"
 #include "contact/rigid_surface.hpp"
-
-#include <Eigen/Core>
-#include <unsupported/Eigen/AutoDiff>
 
 namespace cc::contact {
 namespace {
@@ -21,7 +20,7 @@ using Eigen::Vector3d;
 // A distorted, warped Quad9 segment (curved in both directions).
 NodeMatrix<double> curvedQuad9() {
   NodeMatrix<double> nodes(3, 9);
-  const double corner[9][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}, {0, -1},
+  const double corner[9][2] = {{-1, -1}, {1, -1}, {1, 1},  {-1, 1}, {0, -1},
                                {1, 0},   {0, 1},  {-1, 0}, {0, 0}};
   for (int k = 0; k < 9; ++k) {
     const double x = 1.3 * corner[k][0] + 0.2 * corner[k][1];
@@ -57,8 +56,7 @@ void checkFrameAgainstFiniteDifferences(SegmentType type, const NodeMatrix<doubl
     const SurfaceFrame<double> minus = frameAt(type, nodes, xi - step);
     EXPECT_LT(((plus.rho - minus.rho) / (2 * h) - f.rhoCov[i]).norm(), tolerance);
     for (int j = 0; j < 2; ++j) {
-      EXPECT_LT(((plus.rhoCov[j] - minus.rhoCov[j]) / (2 * h) - f.second(i, j)).norm(),
-                tolerance);
+      EXPECT_LT(((plus.rhoCov[j] - minus.rhoCov[j]) / (2 * h) - f.second(i, j)).norm(), tolerance);
     }
     // Weingarten, eq. (13): n_,i = -h_i^k rho_k.
     const Vector3d normalDerivative = (plus.normal - minus.normal) / (2 * h);
@@ -70,7 +68,8 @@ void checkFrameAgainstFiniteDifferences(SegmentType type, const NodeMatrix<doubl
     for (int j = 0; j < 2; ++j) {
       // Gauss-Codazzi, eq. (14): rho_ij = Gamma^k_ij rho_k + h_ij n.
       const Vector3d decomposed = f.christoffel[0](i, j) * f.rhoCov[0] +
-                                  f.christoffel[1](i, j) * f.rhoCov[1] + f.curvature(i, j) * f.normal;
+                                  f.christoffel[1](i, j) * f.rhoCov[1] +
+                                  f.curvature(i, j) * f.normal;
       EXPECT_LT((decomposed - f.second(i, j)).norm(), 1e-13);
     }
   }
@@ -138,7 +137,7 @@ TEST(SurfaceFrame, CylinderAnalytic) {
 // 4c^2x^2), everything else of the y direction trivial.
 TEST(SurfaceFrame, ParabolicCylinderQuad9Analytic) {
   const double c = 0.03, x0 = 4.0, hx = 0.5, hy = 0.25;
-  const double corner[9][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}, {0, -1},
+  const double corner[9][2] = {{-1, -1}, {1, -1}, {1, 1},  {-1, 1}, {0, -1},
                                {1, 0},   {0, 1},  {-1, 0}, {0, 0}};
   NodeMatrix<double> nodes(3, 9);
   for (int k = 0; k < 9; ++k) {
@@ -177,8 +176,8 @@ TEST(Projection, ConvergesOrthogonallyOnCurvedSegment) {
 
 TEST(Projection, ReportsParameterOutsideSegment) {
   const NodeMatrix<double> nodes = warpedQuad4();
-  const ProjectionResult p = closestPointProjection(SegmentType::Quad4, nodes,
-                                                    Vector3d(1.9, 0.1, 0.2), Vector2d::Zero());
+  const ProjectionResult p =
+      closestPointProjection(SegmentType::Quad4, nodes, Vector3d(1.9, 0.1, 0.2), Vector2d::Zero());
   ASSERT_TRUE(p.converged);
   EXPECT_FALSE(p.inside());
   EXPECT_GT(p.xi[0], 1.0);
@@ -275,7 +274,8 @@ TEST(RigidSurface, ParabolicCylinderMatchesPaperIteration) {
 
 TEST(RigidSurface, NormalLineMissingSphereGivesNoContact) {
   const RigidSurface s = makeSurface(RigidSurface::Shape::Sphere);
-  const auto gap = normalLineGap<double>(s, Vector3d::Zero(), Vector3d(5, 0, 3), Vector3d(0, 0, -1));
+  const auto gap =
+      normalLineGap<double>(s, Vector3d::Zero(), Vector3d(5, 0, 3), Vector3d(0, 0, -1));
   EXPECT_FALSE(gap.has_value());
 }
 

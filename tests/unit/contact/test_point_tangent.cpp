@@ -2,9 +2,9 @@
 // kind (NTS, STS, STAS), in stick and slide, on flat and curved masters (issue 4).
 #include <gtest/gtest.h>
 
+#include <Eigen/Core>
 #include <cmath>
 #include <functional>
-#include <Eigen/Core>
 #include <unsupported/Eigen/AutoDiff>
 
 #include "contact/point_evaluation.hpp"
@@ -33,7 +33,7 @@ NodeMatrix<double> flatQuad4() {
 
 NodeMatrix<double> curvedQuad9() {
   NodeMatrix<double> nodes(3, 9);
-  const double corner[9][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}, {0, -1},
+  const double corner[9][2] = {{-1, -1}, {1, -1}, {1, 1},  {-1, 1}, {0, -1},
                                {1, 0},   {0, 1},  {-1, 0}, {0, 0}};
   for (int k = 0; k < 9; ++k) {
     const double x = 1.2 * corner[k][0] + 0.1 * corner[k][1];
@@ -79,7 +79,9 @@ PointHistory historyWith(const Vector2d& previousXi, const Vector3d& traction) {
   return h;
 }
 
-LawParameters law(double friction) { return {kPenaltyNormal, kPenaltyTangential, friction}; }
+LawParameters law(double friction) {
+  return {kPenaltyNormal, kPenaltyTangential, friction};
+}
 
 // NTS: one slave node at `slavePoint` against `master`; slip `slipScale` times a fixed
 // direction in the parameter plane; previous traction of magnitude `traction`.
@@ -95,8 +97,7 @@ PointCase nodeToSegment(const NodeMatrix<double>& master, SegmentType type,
   c.nodes.resize(3, c.setup.layout.nodeCount);
   c.nodes.leftCols(c.setup.layout.masterCount) = master;
   c.nodes.col(c.setup.layout.masterCount) = slavePoint;
-  const ProjectionResult p =
-      closestPointProjection(type, master, slavePoint, Vector2d::Zero());
+  const ProjectionResult p = closestPointProjection(type, master, slavePoint, Vector2d::Zero());
   const SurfaceFrame<double> f = surfaceFrame<double>(type, master, p.xi[0], p.xi[1]);
   const Vector3d tangentTraction = traction * (f.rhoCov[0] - 0.4 * f.rhoCov[1]).normalized();
   c.setup.history = historyWith(p.xi - slipScale * Vector2d(0.7, 0.3), tangentTraction);
@@ -185,7 +186,8 @@ MatrixXd finiteDifferenceTangent(const PointCase& c, double h = 1e-6) {
     NodeMatrix<double> plus = c.nodes, minus = c.nodes;
     plus(dof % 3, dof / 3) += h;
     minus(dof % 3, dof / 3) -= h;
-    K.col(dof) = (evaluatePoint(c.setup, plus).force - evaluatePoint(c.setup, minus).force) / (2 * h);
+    K.col(dof) =
+        (evaluatePoint(c.setup, plus).force - evaluatePoint(c.setup, minus).force) / (2 * h);
   }
   return K;
 }
@@ -202,7 +204,9 @@ double relativeError(const MatrixXd& K, const MatrixXd& reference) {
   return (K - reference).norm() / reference.norm();
 }
 
-ContactState stateOf(const PointCase& c) { return evaluatePoint(c.setup, c.nodes).response.state; }
+ContactState stateOf(const PointCase& c) {
+  return evaluatePoint(c.setup, c.nodes).response.state;
+}
 
 const Vector3d kSlaveBelowFlat(0.21, -0.33, -0.002);
 const Vector3d kSlaveBelowCurved(0.27, 0.18, -0.025);
@@ -218,8 +222,7 @@ void expectNormalTangentExactUpToSecondOrder(MakeCase makeCase, double depth) {
   for (int k = 0; k < 3; ++k) {
     const PointCase c = makeCase(depth / std::pow(2.0, k));
     ASSERT_EQ(stateOf(c), ContactState::Stick);
-    errors[k] = relativeError(tangent(c, TangentMode::Paper, {}),
-                              finiteDifferenceTangent(c));
+    errors[k] = relativeError(tangent(c, TangentMode::Paper, {}), finiteDifferenceTangent(c));
   }
   const double order = std::log2(errors[1] / errors[2]);
   EXPECT_GT(order, 1.8) << errors[0] << " " << errors[1] << " " << errors[2];
@@ -230,8 +233,8 @@ void expectNormalTangentExactUpToSecondOrder(MakeCase makeCase, double depth) {
 TEST(NormalTangent, NodeToSegmentFlatIsExactToSecondOrderInGap) {
   expectNormalTangentExactUpToSecondOrder(
       [](double depth) {
-        return nodeToSegment(flatQuad4(), SegmentType::Quad4, Vector3d(0.21, -0.33, -depth), 0,
-                             0, 0);
+        return nodeToSegment(flatQuad4(), SegmentType::Quad4, Vector3d(0.21, -0.33, -depth), 0, 0,
+                             0);
       },
       4e-3);
 }
@@ -260,12 +263,10 @@ TEST(NormalTangent, SegmentToSegmentCurvedWithConstantAreaIsExactToSecondOrderIn
 // Without the rotational and curvature parts the normal tangent is not exact on a curved
 // master: the parts matter (guards against a test that cannot fail).
 TEST(NormalTangent, MainPartAloneIsNotExactOnCurvedMaster) {
-  const PointCase c =
-      nodeToSegment(curvedQuad9(), SegmentType::Quad9, kSlaveBelowCurved, 0, 0, 0);
+  const PointCase c = nodeToSegment(curvedQuad9(), SegmentType::Quad9, kSlaveBelowCurved, 0, 0, 0);
   TangentParts mainOnly;
   mainOnly.normalRotational = mainOnly.normalCurvature = false;
-  EXPECT_GT(relativeError(tangent(c, TangentMode::Paper, mainOnly),
-                          finiteDifferenceTangent(c)),
+  EXPECT_GT(relativeError(tangent(c, TangentMode::Paper, mainOnly), finiteDifferenceTangent(c)),
             1e-4);
 }
 
@@ -281,20 +282,30 @@ TEST(ExactTangent, MatchesFiniteDifferencesForAllKindsAndStates) {
   static const RigidSurface flatSurface = plane();
   static const RigidSurface curvedSurface = parabolicCylinder();
   const ExactCase cases[] = {
-      {"nts flat stick", nodeToSegment(flatQuad4(), SegmentType::Quad4, kSlaveBelowFlat, 0.3, 1e-3, 0.5), ContactState::Stick},
-      {"nts flat slip", nodeToSegment(flatQuad4(), SegmentType::Quad4, kSlaveBelowFlat, 0.3, 5e-2, 0.5), ContactState::Slip},
-      {"nts curved stick", nodeToSegment(curvedQuad9(), SegmentType::Quad9, kSlaveBelowCurved, 0.5, 1e-3, 1.0), ContactState::Stick},
-      {"nts curved slip", nodeToSegment(curvedQuad9(), SegmentType::Quad9, kSlaveBelowCurved, 0.3, 5e-2, 4.0), ContactState::Slip},
-      {"sts flat stick", segmentToSegment(flatQuad4(), SegmentType::Quad4, 0.5, 1e-3, 1.0, false), ContactState::Stick},
-      {"sts curved slip", segmentToSegment(curvedQuad9(), SegmentType::Quad9, 0.3, 5e-2, 2.0, false, 0.03), ContactState::Slip},
+      {"nts flat stick",
+       nodeToSegment(flatQuad4(), SegmentType::Quad4, kSlaveBelowFlat, 0.3, 1e-3, 0.5),
+       ContactState::Stick},
+      {"nts flat slip",
+       nodeToSegment(flatQuad4(), SegmentType::Quad4, kSlaveBelowFlat, 0.3, 5e-2, 0.5),
+       ContactState::Slip},
+      {"nts curved stick",
+       nodeToSegment(curvedQuad9(), SegmentType::Quad9, kSlaveBelowCurved, 0.5, 1e-3, 1.0),
+       ContactState::Stick},
+      {"nts curved slip",
+       nodeToSegment(curvedQuad9(), SegmentType::Quad9, kSlaveBelowCurved, 0.3, 5e-2, 4.0),
+       ContactState::Slip},
+      {"sts flat stick", segmentToSegment(flatQuad4(), SegmentType::Quad4, 0.5, 1e-3, 1.0, false),
+       ContactState::Stick},
+      {"sts curved slip",
+       segmentToSegment(curvedQuad9(), SegmentType::Quad9, 0.3, 5e-2, 2.0, false, 0.03),
+       ContactState::Slip},
       {"stas plane stick", analyticalSurface(flatSurface, 0.5, 1e-3, 1.0), ContactState::Stick},
       {"stas parabola slip", analyticalSurface(curvedSurface, 0.3, 5e-2, 2.0), ContactState::Slip},
   };
   for (const ExactCase& e : cases) {
     SCOPED_TRACE(e.name);
     ASSERT_EQ(stateOf(e.c), e.expected);
-    EXPECT_LT(relativeError(tangent(e.c, TangentMode::Exact, {}),
-                            finiteDifferenceTangent(e.c)),
+    EXPECT_LT(relativeError(tangent(e.c, TangentMode::Exact, {}), finiteDifferenceTangent(e.c)),
               1e-6);
   }
 }
@@ -335,8 +346,7 @@ void expectFirstOrderInIncrement(const IncrementScaling& scaling) {
   for (int k = 0; k < 3; ++k) {
     const PointCase c = scaling.make(increments[k]);
     ASSERT_EQ(stateOf(c), scaling.state);
-    errors[k] = relativeError(tangent(c, TangentMode::Paper, {}),
-                              finiteDifferenceTangent(c));
+    errors[k] = relativeError(tangent(c, TangentMode::Paper, {}), finiteDifferenceTangent(c));
   }
   for (int k = 0; k < 2; ++k) {
     const double order = std::log2(errors[k] / errors[k + 1]);
@@ -356,13 +366,12 @@ PointCase nodeToSegmentScaled(bool curved, double s, double slip) {
   const double surface = curved ? -0.0098 : 0.0;  // master height below the slave point
   const Vector3d point = curved ? Vector3d(0.27, 0.18, surface - s) : Vector3d(0.21, -0.33, -s);
   return nodeToSegment(curved ? curvedQuad9() : flatQuad4(),
-                       curved ? SegmentType::Quad9 : SegmentType::Quad4, point, kFriction,
-                       slip * s, kTractionFraction * kFriction * kPenaltyNormal * s);
+                       curved ? SegmentType::Quad9 : SegmentType::Quad4, point, kFriction, slip * s,
+                       kTractionFraction * kFriction * kPenaltyNormal * s);
 }
 
 PointCase segmentToSegmentScaled(double s, double slip) {
-  const PointCase probe =
-      segmentToSegment(curvedQuad9(), SegmentType::Quad9, 0, 0, 0, true, 0.0);
+  const PointCase probe = segmentToSegment(curvedQuad9(), SegmentType::Quad9, 0, 0, 0, true, 0.0);
   const double height = evaluatePoint(probe.setup, probe.nodes).kinematics.gap;
   return segmentToSegment(curvedQuad9(), SegmentType::Quad9, kFriction, slip * s,
                           kTractionFraction * kFriction * kPenaltyNormal * s, true, height + s);
@@ -390,14 +399,24 @@ TEST(PaperTangent, TangentialPartsDifferFromDiscreteAlgorithmAtFirstOrderInIncre
     return s;
   }();
   const IncrementScaling cases[] = {
-      {"nts flat stick", [](double s) { return nodeToSegmentScaled(false, s, kStickSlip); }, ContactState::Stick},
-      {"nts flat slide", [](double s) { return nodeToSegmentScaled(false, s, kSlideSlip); }, ContactState::Slip},
-      {"nts curved stick", [](double s) { return nodeToSegmentScaled(true, s, kStickSlip); }, ContactState::Stick},
-      {"nts curved slide", [](double s) { return nodeToSegmentScaled(true, s, kSlideSlip); }, ContactState::Slip},
-      {"sts curved stick", [](double s) { return segmentToSegmentScaled(s, kStickSlip); }, ContactState::Stick},
-      {"sts curved slide", [](double s) { return segmentToSegmentScaled(s, kSlideSlip); }, ContactState::Slip},
-      {"stas parallel plane stick", [](double s) { return analyticalSurfaceScaled(parallelPlane, s, kStickSlip); }, ContactState::Stick},
-      {"stas parallel plane slide", [](double s) { return analyticalSurfaceScaled(parallelPlane, s, kSlideSlip); }, ContactState::Slip},
+      {"nts flat stick", [](double s) { return nodeToSegmentScaled(false, s, kStickSlip); },
+       ContactState::Stick},
+      {"nts flat slide", [](double s) { return nodeToSegmentScaled(false, s, kSlideSlip); },
+       ContactState::Slip},
+      {"nts curved stick", [](double s) { return nodeToSegmentScaled(true, s, kStickSlip); },
+       ContactState::Stick},
+      {"nts curved slide", [](double s) { return nodeToSegmentScaled(true, s, kSlideSlip); },
+       ContactState::Slip},
+      {"sts curved stick", [](double s) { return segmentToSegmentScaled(s, kStickSlip); },
+       ContactState::Stick},
+      {"sts curved slide", [](double s) { return segmentToSegmentScaled(s, kSlideSlip); },
+       ContactState::Slip},
+      {"stas parallel plane stick",
+       [](double s) { return analyticalSurfaceScaled(parallelPlane, s, kStickSlip); },
+       ContactState::Stick},
+      {"stas parallel plane slide",
+       [](double s) { return analyticalSurfaceScaled(parallelPlane, s, kSlideSlip); },
+       ContactState::Slip},
   };
   for (const IncrementScaling& scaling : cases) expectFirstOrderInIncrement(scaling);
 }
@@ -418,8 +437,7 @@ TEST(PaperTangent, AnalyticalSurfaceDifferenceDoesNotGrowWithTilt) {
     const RigidSurface tilted = plane(tilts[k]);
     const PointCase c = analyticalSurfaceScaled(tilted, s, kStickSlip);
     ASSERT_EQ(stateOf(c), ContactState::Stick);
-    errors[k] = relativeError(tangent(c, TangentMode::Paper, {}),
-                              finiteDifferenceTangent(c));
+    errors[k] = relativeError(tangent(c, TangentMode::Paper, {}), finiteDifferenceTangent(c));
   }
   const double order = std::log2(errors[0] / errors[1]);
   EXPECT_LT(std::abs(order), 0.2) << errors[0] << " " << errors[1];

@@ -6,8 +6,8 @@
 #include <fstream>
 #include <sstream>
 
-#include "deck/keyword_decl.hpp"
 #include "common/name_matching.hpp"
+#include "deck/keyword_decl.hpp"
 #include "deck/parsed_line.hpp"
 #include "deck_test_utils.hpp"
 #include "fem/quadrature.hpp"

@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "mesh/mesh.hpp"
-#include "records/result_records.hpp"
 #include "output/results_writer.hpp"
+#include "records/result_records.hpp"
 
 namespace cc::test {
 
