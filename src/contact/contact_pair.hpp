@@ -1,8 +1,7 @@
-// A contact pair as a Contribution to the global system: its contact points (slave nodes for
-// NTS, slave Gauss points for STS, master Gauss points against a rigid surface for STAS), the
-// segment search that keeps every point on the master segment it projects onto, the point
-// history (xi, rho, T, state, accumulated slip) committed only when a step converges, and the
-// per-step output record.
+// A contact pair as a Contribution to the global system: evaluates its contact points (made by
+// contact_points.hpp for each kind) on the master segments the search tracking
+// (segment_tracking.hpp) assigns them, and commits the point history (xi, rho, T, state,
+// accumulated slip) only when a step converges; a cut-back restores it.
 #pragma once
 
 #include <atomic>
@@ -11,8 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "contact/master_surface.hpp"
+#include "contact/contact_points.hpp"
 #include "contact/point_evaluation.hpp"
+#include "contact/segment_tracking.hpp"
 #include "fem/contribution.hpp"
 #include "mesh/mesh.hpp"
 #include "records/result_records.hpp"
@@ -66,69 +66,24 @@ class ContactPair : public Contribution {
   int pointCount() const { return static_cast<int>(points_.size()); }
 
  private:
-  // What the last evaluation found at a point (the trial state of the current iteration).
-  struct Trial {
-    bool valid = false;
-    Eigen::Vector2d xi = Eigen::Vector2d::Zero();
-    Eigen::Vector3d slavePoint = Eigen::Vector3d::Zero();
-    Eigen::Vector3d masterPoint = Eigen::Vector3d::Zero();
-    Eigen::Vector3d normal = Eigen::Vector3d::Zero();
-    Eigen::Vector3d traction = Eigen::Vector3d::Zero();           // T (Cartesian)
-    Eigen::Vector2d tractionCovariant = Eigen::Vector2d::Zero();  // T_i
-    double gap = 0;
-    double normalTraction = 0;
-    double weight = 0;
-    double slipIncrement = 0;
-    ContactState state = ContactState::Open;
-    bool symmetric = true;
-  };
-
-  struct Point {
-    // Slave side (fixed): nodes and shape values at the point; NTS area or STS Gauss point.
-    int slaveCount = 0;
-    std::array<int, 9> slaveNodes{};
-    std::array<double, 9> slaveShape{};
-    SlaveSide slave;
-    // STAS: the fixed master segment and Gauss point.
-    int fixedSegment = -1;
-    Eigen::Vector2d gaussPoint = Eigen::Vector2d::Zero();
-    double gaussWeight = 0;
-    // Search state of the current iteration.
-    int segment = -1;
-    Eigen::Vector2d xi = Eigen::Vector2d::Zero();
-    // The search state right after the last commit: a cut-back restores it, so that the retried
-    // step starts its search exactly where the first attempt did.
-    int committedSearchSegment = -1;
-    Eigen::Vector2d committedSearchXi = Eigen::Vector2d::Zero();
-    // The item: node list and where the slave/master/previous-master nodes sit in it.
-    std::vector<int> nodes;
-    PointLayout layout;
-    PointHistory committed;
-    Trial trial;
-  };
-
-  ContactPair(ContactPairConfig config, const FaceSet& master);
-  void buildItem(Point& point) const;
-  Eigen::Vector3d slavePosition(const Point& point, const Eigen::Matrix3Xd& x) const;
-  // Assigns every point its master segment (local walk, then the global search). Fails with
-  // ProjectionFailure when a point's projection broke down on its own segment and no other
-  // segment holds it: treating it as open could drop a point that is in contact.
+  ContactPair(ContactPairConfig config, const FaceSet& master, std::vector<PairPoint> points);
+  const MasterSurface& master() const { return tracker_.master(); }
+  void buildItem(PairPoint& point) const;
+  // The search tracking of NTS/STS points; rebuilds the items of the points that moved.
   LocalStatus searchSegments(const Eigen::Matrix3Xd& x, double time);
   // Table 1, step 1: the projections in the initial configuration start the history.
   void initializeHistory(const AssemblyState& state);
-  PointSetup setupFor(const Point& point) const;
-  static void storeTrial(Point& point, const PointEvaluation& evaluation, const LawParameters& law);
+  PointSetup setupFor(const PairPoint& point) const;
 
   ContactPairConfig config_;
-  MasterSurface master_;
-  std::vector<Point> points_;
+  SegmentTracker tracker_;
+  std::vector<PairPoint> points_;
+  std::vector<int> moved_;  // scratch of searchSegments
   std::uint64_t topologyVersion_ = 1;
   // STAS
   RigidSurface surface_;
   SurfaceMotion motion_;
   Eigen::Vector3d surfaceOffset_ = Eigen::Vector3d::Zero();
-  // The search grid is rebuilt once per step attempt (the master moves between steps).
-  double gridTime_ = -1;
   bool historyInitialized_ = false;
 };
 

@@ -44,7 +44,7 @@ ContactState stateFrom(double value, const std::string& pair, int point) {
 Eigen::MatrixXd ContactPair::exportHistory() const {
   Eigen::MatrixXd table(kHistoryRows, pointCount());
   for (int i = 0; i < pointCount(); ++i) {
-    const Point& point = points_[i];
+    const PairPoint& point = points_[i];
     const PointHistory& h = point.committed;
     auto column = table.col(i);
     column[kProjected] = h.projected ? 1 : 0;
@@ -68,19 +68,19 @@ void ContactPair::importHistory(const Eigen::MatrixXd& table) {
         "contact pair '{}': history table is {} x {}, expected {} x {} (one column per point)",
         config_.name, table.rows(), table.cols(), kHistoryRows, pointCount()));
   }
-  const bool segmentBased = config_.kind != PointKind::SegmentToAnalytical;
+  const bool segmentBased = searchesMasterSegments(config_.kind);
   for (int i = 0; i < pointCount(); ++i) {
     const auto column = table.col(i);
     for (int row : {kSegment, kSearchSegment}) {
       const double segment = column[row];
       if (segmentBased && (segment != static_cast<int>(segment) || segment < -1 ||
-                           segment >= master_.segmentCount())) {
+                           segment >= master().segmentCount())) {
         throw std::invalid_argument(
             fmt::format("contact pair '{}', point {}: master segment {} does not exist",
                         config_.name, i, segment));
       }
     }
-    Point& point = points_[i];
+    PairPoint& point = points_[i];
     PointHistory& h = point.committed;
     h.projected = column[kProjected] != 0;
     h.segment = static_cast<int>(column[kSegment]);
@@ -95,13 +95,13 @@ void ContactPair::importHistory(const Eigen::MatrixXd& table) {
     point.xi = column.segment<2>(kSearchXi);
     point.committedSearchSegment = point.segment;
     point.committedSearchXi = point.xi;
-    point.trial = Trial{};
+    point.trial = PointTrial{};
     buildItem(point);
   }
   // The history replaces the initial projection (Table 1, step 1), and the search grid and the
   // item topology follow the restored segments.
   historyInitialized_ = true;
-  gridTime_ = -1;
+  tracker_.invalidateGrid();
   ++topologyVersion_;
 }
 

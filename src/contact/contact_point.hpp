@@ -22,7 +22,7 @@ namespace cc::contact {
 // Where the nodes of one contact item sit in its node list (local indices), and the slave
 // side's fixed shape-function values at the slave point.
 struct PointLayout {
-  SegmentType masterType = SegmentType::Quad4;
+  shape::SurfaceType masterType = shape::SurfaceType::Quad4;
   int masterCount = 0;
   std::array<int, 9> masterLocal{};
   int slaveCount = 0;  // NTS: 1, STS: 4 or 9, STAS: 0 (rigid slave)
@@ -30,7 +30,7 @@ struct PointLayout {
   std::array<double, 9> slaveShape{};
   int previousMasterCount = 0;  // nodes of the segment of the last converged projection, when
   std::array<int, 9> previousMasterLocal{};  // it differs from the current one (eq. (47))
-  SegmentType previousMasterType = SegmentType::Quad4;
+  shape::SurfaceType previousMasterType = shape::SurfaceType::Quad4;
   int nodeCount = 0;  // size of the item's node list
 };
 

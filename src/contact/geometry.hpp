@@ -11,7 +11,7 @@
 #include <array>
 #include <type_traits>
 
-#include "contact/surface_shape.hpp"
+#include "fem/shape_functions.hpp"
 
 namespace cc::contact {
 
@@ -58,7 +58,7 @@ struct SurfaceFrame {
 
 // rho, rho_i and rho_ij of a segment with the given nodes (3 x count) and shape values.
 template <class Scalar>
-void interpolateSurface(const NodeMatrix<Scalar>& nodes, const SurfaceShape<Scalar>& shape,
+void interpolateSurface(const NodeMatrix<Scalar>& nodes, const shape::SurfaceShape<Scalar>& shape,
                         Vec3<Scalar>& rho, std::array<Vec3<Scalar>, 2>& rhoCov,
                         std::type_identity_t<std::array<Vec3<Scalar>, 3>>* rhoSecond) {
   rho.setZero();
@@ -158,9 +158,9 @@ SurfaceFrame<Scalar> frameFromDerivatives(const Vec3<Scalar>& rho,
 
 // The complete frame at parameter xi of a segment.
 template <class Scalar>
-SurfaceFrame<Scalar> surfaceFrame(SegmentType type, const NodeMatrix<Scalar>& nodes,
+SurfaceFrame<Scalar> surfaceFrame(shape::SurfaceType type, const NodeMatrix<Scalar>& nodes,
                                   const Scalar& xi1, const Scalar& xi2) {
-  const SurfaceShape<Scalar> shape = surfaceShape(type, xi1, xi2);
+  const shape::SurfaceShape<Scalar> shape = shape::surfaceShape(type, xi1, xi2);
   Vec3<Scalar> rho;
   std::array<Vec3<Scalar>, 2> rhoCov;
   std::array<Vec3<Scalar>, 3> rhoSecond;

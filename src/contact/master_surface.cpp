@@ -77,7 +77,7 @@ bool MasterSurface::accepts(int segment, const Eigen::Vector2d& xi, double toler
 }
 
 MasterSurface::MasterSurface(const FaceSet& faces)
-    : type_(faces.type == CellType::Quad9 ? SegmentType::Quad9 : SegmentType::Quad4),
+    : type_(faces.type == CellType::Quad9 ? shape::SurfaceType::Quad9 : shape::SurfaceType::Quad4),
       segments_(faces.connectivity),
       neighbours_(faces.connectivity.rows(), std::array<int, 4>{-1, -1, -1, -1}) {
   std::map<std::pair<int, int>, std::pair<int, int>> edgeOwner;  // sorted corners -> (seg, edge)
@@ -145,7 +145,7 @@ SegmentProjection MasterSurface::walk(int start, const Eigen::Vector2d& guess,
   std::vector<int> visited;
   std::vector<Eigen::Vector2d> visitedXi;
   auto projectionOn = [&](int segment, const Eigen::Vector2d& xi) -> SegmentProjection {
-    const SurfaceShape<double> shape = surfaceShape(type_, xi[0], xi[1]);
+    const shape::SurfaceShape<double> shape = shape::surfaceShape(type_, xi[0], xi[1]);
     Eigen::Vector3d rho = Eigen::Vector3d::Zero();
     for (int k = 0; k < shape.count; ++k) rho += shape.value[k] * coordinates.col(node(segment, k));
     return {segment, xi, (point - rho).norm()};
@@ -206,7 +206,7 @@ SegmentProjection MasterSurface::search(const Eigen::Vector3d& point,
     const ProjectionResult p = closestPointProjection(type_, segmentNodes(segment, coordinates),
                                                       point, Eigen::Vector2d::Zero());
     if (!p.converged) continue;
-    const SurfaceShape<double> shape = surfaceShape(type_, p.xi[0], p.xi[1]);
+    const shape::SurfaceShape<double> shape = shape::surfaceShape(type_, p.xi[0], p.xi[1]);
     Eigen::Vector3d rho = Eigen::Vector3d::Zero();
     for (int k = 0; k < shape.count; ++k) rho += shape.value[k] * coordinates.col(node(segment, k));
     const SegmentProjection candidate{segment, p.xi, (point - rho).norm()};

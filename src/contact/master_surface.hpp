@@ -30,7 +30,7 @@ class MasterSurface {
   MasterSurface() = default;
   explicit MasterSurface(const FaceSet& faces);
 
-  SegmentType type() const { return type_; }
+  shape::SurfaceType type() const { return type_; }
   int segmentCount() const { return static_cast<int>(segments_.rows()); }
   int nodesPerSegment() const { return static_cast<int>(segments_.cols()); }
   int node(int segment, int k) const { return segments_(segment, k); }
@@ -51,8 +51,6 @@ class MasterSurface {
   // Global search through the grid (needs buildSearchGrid): the closest inside projection.
   SegmentProjection search(const Eigen::Vector3d& point, const Eigen::Matrix3Xd& coordinates) const;
 
-  double typicalSegmentSize() const { return typicalSize_; }
-
  private:
   // Whether a projection parameter lies on the segment (up to `tolerance` beyond a shared edge),
   // or just beyond a free surface edge.
@@ -62,7 +60,7 @@ class MasterSurface {
   CellKey cellKey(const Eigen::Vector3i& cell) const;
   Eigen::Vector3i cellOf(const Eigen::Vector3d& point) const;
 
-  SegmentType type_ = SegmentType::Quad4;
+  shape::SurfaceType type_ = shape::SurfaceType::Quad4;
   Connectivity segments_;
   std::vector<std::array<int, 4>> neighbours_;
   double typicalSize_ = 1;

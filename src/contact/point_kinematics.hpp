@@ -19,7 +19,7 @@ struct SlaveSide {
   // NTS: tributary area of the slave node (reference configuration, held constant).
   double nodalArea = 0;
   // STS: the slave segment and the Gauss point on it.
-  SegmentType segmentType = SegmentType::Quad4;
+  shape::SurfaceType segmentType = shape::SurfaceType::Quad4;
   Eigen::Vector2d gaussPoint = Eigen::Vector2d::Zero();
   double gaussWeight = 0;
   // STS: use this area element instead of the current one (the paper keeps ds constant in
@@ -39,9 +39,9 @@ NodeMatrix<Scalar> gatherNodes(const NodeMatrix<Scalar>& itemNodes, const std::a
 
 template <class Scalar>
 void setMasterFrame(PointKinematics<Scalar>& kin, const NodeMatrix<Scalar>& masterNodes,
-                    SegmentType type, const Scalar& xi1, const Scalar& xi2) {
+                    shape::SurfaceType type, const Scalar& xi1, const Scalar& xi2) {
   kin.frame = surfaceFrame(type, masterNodes, xi1, xi2);
-  const SurfaceShape<Scalar> shape = surfaceShape(type, xi1, xi2);
+  const shape::SurfaceShape<Scalar> shape = shape::surfaceShape(type, xi1, xi2);
   for (int k = 0; k < shape.count; ++k) kin.masterShape[k] = shape.value[k];
 }
 
@@ -55,12 +55,12 @@ void previousMaterialPoint(const NodeMatrix<Scalar>& itemNodes, const PointLayou
                            const NodeMatrix<Scalar>& masterNodes, const PointHistory& history,
                            Vec3<Scalar>& point, Vec3<Scalar>& convectedTraction) {
   const bool sameSegment = layout.previousMasterCount == 0;
-  const SegmentType type = sameSegment ? layout.masterType : layout.previousMasterType;
+  const shape::SurfaceType type = sameSegment ? layout.masterType : layout.previousMasterType;
   const NodeMatrix<Scalar> previousNodes =
       sameSegment ? masterNodes
                   : gatherNodes(itemNodes, layout.previousMasterLocal, layout.previousMasterCount);
-  const SurfaceShape<Scalar> shape =
-      surfaceShape(type, Scalar(history.xi[0]), Scalar(history.xi[1]));
+  const shape::SurfaceShape<Scalar> shape =
+      shape::surfaceShape(type, Scalar(history.xi[0]), Scalar(history.xi[1]));
   std::array<Vec3<Scalar>, 2> tangents;
   interpolateSurface(previousNodes, shape, point, tangents, nullptr);
   const Mat2<Scalar> inverseMetric = contravariantMetric(covariantMetric(tangents));
@@ -109,8 +109,8 @@ PointKinematics<Scalar> projectedPointKinematics(const NodeMatrix<Scalar>& itemN
     // Eq. (10) on the slave segment: ds = |r_s,1 x r_s,2| dxi^1 dxi^2.
     const NodeMatrix<Scalar> slaveNodes =
         detail::gatherNodes(itemNodes, layout.slaveLocal, layout.slaveCount);
-    const SurfaceShape<Scalar> shape =
-        surfaceShape(slave.segmentType, Scalar(slave.gaussPoint[0]), Scalar(slave.gaussPoint[1]));
+    const shape::SurfaceShape<Scalar> shape = shape::surfaceShape(
+        slave.segmentType, Scalar(slave.gaussPoint[0]), Scalar(slave.gaussPoint[1]));
     Vec3<Scalar> point;
     std::array<Vec3<Scalar>, 2> tangents;
     interpolateSurface(slaveNodes, shape, point, tangents, nullptr);

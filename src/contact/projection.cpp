@@ -10,11 +10,11 @@ namespace {
 
 // Gradient g_i = rho_i . (r - rho) (= -F'/2, eq. (24)) and Hessian H_ij = a_ij - rho_ij . (r -
 // rho) (= F''/2, eq. (25)) of the squared distance at xi.
-void distanceDerivatives(SegmentType type, const NodeMatrix<double>& nodes,
+void distanceDerivatives(shape::SurfaceType type, const NodeMatrix<double>& nodes,
                          const Eigen::Vector3d& point, const Eigen::Vector2d& xi,
                          Eigen::Vector2d& gradient, Eigen::Matrix2d& hessian,
                          Eigen::Matrix2d& metric) {
-  const SurfaceShape<double> shape = surfaceShape(type, xi[0], xi[1]);
+  const shape::SurfaceShape<double> shape = shape::surfaceShape(type, xi[0], xi[1]);
   Eigen::Vector3d rho;
   std::array<Eigen::Vector3d, 2> rhoCov;
   std::array<Eigen::Vector3d, 3> rhoSecond;
@@ -35,7 +35,7 @@ bool positiveDefinite(const Eigen::Matrix2d& m) {
 
 }  // namespace
 
-ProjectionResult closestPointProjection(SegmentType type, const NodeMatrix<double>& nodes,
+ProjectionResult closestPointProjection(shape::SurfaceType type, const NodeMatrix<double>& nodes,
                                         const Eigen::Vector3d& point,
                                         const Eigen::Vector2d& initialGuess,
                                         const ProjectionOptions& options) {

@@ -31,7 +31,7 @@ struct ProjectionResult {
   }
 };
 
-ProjectionResult closestPointProjection(SegmentType type, const NodeMatrix<double>& nodes,
+ProjectionResult closestPointProjection(shape::SurfaceType type, const NodeMatrix<double>& nodes,
                                         const Eigen::Vector3d& point,
                                         const Eigen::Vector2d& initialGuess,
                                         const ProjectionOptions& options = {});
@@ -39,13 +39,13 @@ ProjectionResult closestPointProjection(SegmentType type, const NodeMatrix<doubl
 // One Newton step of eq. (23) taken in the scalar type Scalar at the converged parameter: the
 // value is unchanged, the derivative is that of the exact projection xi(x) (implicit function).
 template <class Scalar>
-Eigen::Matrix<Scalar, 2, 1> differentiableProjection(SegmentType type,
+Eigen::Matrix<Scalar, 2, 1> differentiableProjection(shape::SurfaceType type,
                                                      const NodeMatrix<Scalar>& nodes,
                                                      const Vec3<Scalar>& point,
                                                      const Eigen::Vector2d& converged) {
   const Scalar xi1(converged[0]);
   const Scalar xi2(converged[1]);
-  const SurfaceShape<Scalar> shape = surfaceShape(type, xi1, xi2);
+  const shape::SurfaceShape<Scalar> shape = shape::surfaceShape(type, xi1, xi2);
   Vec3<Scalar> rho;
   std::array<Vec3<Scalar>, 2> rhoCov;
   std::array<Vec3<Scalar>, 3> rhoSecond;

@@ -24,8 +24,8 @@ VectorXd positionTranspose(const PointKinematics<double>& kin, const PointLayout
 }
 
 // A_j^T u: master blocks N_m,j u (A_j maps dofs to delta rho_,j).
-VectorXd derivativeTranspose(const SurfaceShape<double>& shape, const PointLayout& layout, int j,
-                             const Eigen::Vector3d& u) {
+VectorXd derivativeTranspose(const shape::SurfaceShape<double>& shape, const PointLayout& layout,
+                             int j, const Eigen::Vector3d& u) {
   VectorXd v = VectorXd::Zero(3 * layout.nodeCount);
   for (int b = 0; b < layout.masterCount; ++b) {
     v.segment<3>(3 * layout.masterLocal[b]) += shape.first[b][j] * u;
@@ -47,7 +47,7 @@ void addSymmetricPair(MatrixXd& K, double scale, const VectorXd& a, const Vector
 TangentContext makeTangentContext(const PointKinematics<double>& kin, const PointLayout& layout,
                                   const Eigen::Vector2d& xi, const Eigen::Vector3d& gapDirection) {
   const SurfaceFrame<double>& f = kin.frame;
-  const SurfaceShape<double> shape = surfaceShape(layout.masterType, xi[0], xi[1]);
+  const shape::SurfaceShape<double> shape = shape::surfaceShape(layout.masterType, xi[0], xi[1]);
   TangentContext c;
   c.frame = &kin.frame;
   c.weight = kin.weight;

@@ -72,8 +72,8 @@ void dispatch(const deck::LogicalLine& line, deck::DeckState& state) {
 ProblemSpec parseDeckText(const std::string& text, const std::string& virtualPath) {
   const deck::DeckSource source = deck::loadDeckSource(text, virtualPath);
   deck::DeckState state;
-  state.newton = deck::initialNewton();
-  state.cutback = deck::initialCutback();
+  state.newton = NewtonSpec{};  // the defaults, written once in spec/problem_spec.hpp
+  state.cutback = CutbackSpec{};
   state.spec.deckPath = virtualPath;
   state.spec.deckText = source.text;
   for (const deck::LogicalLine& line : source.lines) dispatch(line, state);

@@ -17,59 +17,71 @@ std::string phaseSpelling(const std::string& cutbackName) {
   return cutbackName == "max" || cutbackName == "factor" ? "cutback_" + cutbackName : cutbackName;
 }
 
-const KeywordDecl& keywordNamed(const std::string& name) {
-  for (const KeywordDecl& keyword : keywordTable()) {
-    if (keyword.name == name) return keyword;
-  }
-  throw std::logic_error("deck: no keyword " + name);
+// The deck spelling of a default taken from the spec structs, where every default is written once:
+// shortest form, exponent without '+' or leading zeros (1e6, 1e-10, 0.5).
+std::string defaultText(double value) {
+  std::string text = fmt::format("{:g}", value);
+  const std::size_t e = text.find('e');
+  if (e == std::string::npos) return text;
+  std::string exponent = text.substr(e + 1);
+  const bool negative = exponent.front() == '-';
+  exponent.erase(0, exponent.find_first_not_of("+-0"));
+  return text.substr(0, e) + "e" + (negative ? "-" : "") + (exponent.empty() ? "0" : exponent);
+}
+std::string defaultText(int value) {
+  return std::to_string(value);
+}
+std::string defaultText(bool value) {
+  return value ? "yes" : "no";
 }
 
-// A line holding only the keyword, so that every parameter takes its declared default.
-ParsedLine defaultsOf(const std::string& keywordName) {
-  LogicalLine line;
-  line.tokens.push_back({Token::Kind::Word, keywordName, SourceLocation{"<defaults>", 1, 1}});
-  line.end = line.tokens.front().where;
-  return ParsedLine(line, keywordNamed(keywordName));
+std::string criterionName(NewtonSpec::Criterion criterion) {
+  for (const auto& [name, value] : convergenceCriteria()) {
+    if (value == criterion) return name;
+  }
+  throw std::logic_error("deck: undeclared convergence criterion");
 }
 
 }  // namespace
 
 std::vector<ValueDecl> newtonParameters() {
+  const NewtonSpec defaults;
   return {integerValue("maxit", "Newton iterations per step before the step counts as failed")
               .withRange(Range::atLeast(1))
-              .withDefault("30"),
+              .withDefault(defaultText(defaults.maxIterations)),
           numberValue("residual", "tolerance on the relative residual norm |R_k| / |R_0|")
               .withRange(Range::greaterThan(0))
-              .withDefault("1e-10"),
+              .withDefault(defaultText(defaults.residualTolerance)),
           numberValue("energy", "tolerance on the relative energy norm |du_k . R_k| / |du_0 . R_0|")
               .withRange(Range::greaterThan(0))
-              .withDefault("1e-16"),
+              .withDefault(defaultText(defaults.energyTolerance)),
           enumValue("converge", choiceNames(convergenceCriteria()),
                     "which tolerance decides convergence: energy, residual, both, or either")
-              .withDefault("energy"),
+              .withDefault(criterionName(defaults.criterion)),
           numberValue("diverge", "the step fails when |R_k| exceeds this multiple of |R_0|")
               .withRange(Range::greaterThan(1))
-              .withDefault("1e6"),
+              .withDefault(defaultText(defaults.divergenceFactor)),
           boolValue("line_search", "backtracking line search along the Newton direction")
-              .withDefault("no")};
+              .withDefault(defaultText(defaults.lineSearch))};
 }
 
 std::vector<ValueDecl> cutbackParameters() {
+  const CutbackSpec defaults;
   return {integerValue("max", "cut-backs allowed per step before the run stops")
               .withRange(Range::atLeast(0))
-              .withDefault("10"),
+              .withDefault(defaultText(defaults.maxCutbacks)),
           numberValue("factor", "dt multiplier after a failed attempt")
               .withRange(Range::between(0, false, 1, false))
-              .withDefault("0.5"),
+              .withDefault(defaultText(defaults.factor)),
           integerValue("grow_after", "consecutive easy steps before dt grows again")
               .withRange(Range::atLeast(1))
-              .withDefault("3"),
+              .withDefault(defaultText(defaults.growAfter)),
           numberValue("grow_factor", "dt multiplier on regrowth (never beyond the phase's dt)")
               .withRange(Range::atLeast(1))
-              .withDefault("2"),
+              .withDefault(defaultText(defaults.growFactor)),
           integerValue("easy", "a step is easy if it converged within this many iterations")
               .withRange(Range::atLeast(1))
-              .withDefault("6")};
+              .withDefault(defaultText(defaults.easyIterations))};
 }
 
 std::vector<ValueDecl> phaseOnlyParameters() {
@@ -84,8 +96,8 @@ std::vector<ValueDecl> phaseOnlyParameters() {
   return parameters;
 }
 
-void applyNewtonParameters(const ParsedLine& line, NewtonSpec& newton, bool includeDefaults) {
-  auto use = [&](const char* name) { return includeDefaults || line.given(name); };
+void applyNewtonParameters(const ParsedLine& line, NewtonSpec& newton) {
+  auto use = [&](const char* name) { return line.given(name); };
   if (use("maxit")) newton.maxIterations = line.integer("maxit");
   if (use("residual")) newton.residualTolerance = line.number("residual");
   if (use("energy")) newton.energyTolerance = line.number("energy");
@@ -96,31 +108,17 @@ void applyNewtonParameters(const ParsedLine& line, NewtonSpec& newton, bool incl
   if (use("line_search")) newton.lineSearch = line.flag("line_search");
 }
 
-void applyCutbackParameters(const ParsedLine& line, CutbackSpec& cutback, bool includeDefaults) {
+void applyCutbackParameters(const ParsedLine& line, CutbackSpec& cutback) {
   const bool onStepsLine = line.keyword().name == "steps";
   auto name = [&](const std::string& cutbackName) {
     return onStepsLine ? phaseSpelling(cutbackName) : cutbackName;
   };
-  auto use = [&](const std::string& cutbackName) {
-    return includeDefaults || line.given(name(cutbackName));
-  };
+  auto use = [&](const std::string& cutbackName) { return line.given(name(cutbackName)); };
   if (use("max")) cutback.maxCutbacks = line.integer(name("max"));
   if (use("factor")) cutback.factor = line.number(name("factor"));
   if (use("grow_after")) cutback.growAfter = line.integer(name("grow_after"));
   if (use("grow_factor")) cutback.growFactor = line.number(name("grow_factor"));
   if (use("easy")) cutback.easyIterations = line.integer(name("easy"));
-}
-
-NewtonSpec initialNewton() {
-  NewtonSpec newton;
-  applyNewtonParameters(defaultsOf("newton"), newton, true);
-  return newton;
-}
-
-CutbackSpec initialCutback() {
-  CutbackSpec cutback;
-  applyCutbackParameters(defaultsOf("cutback"), cutback, true);
-  return cutback;
 }
 
 void handleSolve(const ParsedLine& line, DeckState& state) {
@@ -141,11 +139,11 @@ void handleEnd(const ParsedLine& line, DeckState& state) {
 }
 
 void handleNewton(const ParsedLine& line, DeckState& state) {
-  applyNewtonParameters(line, state.newton, false);
+  applyNewtonParameters(line, state.newton);
 }
 
 void handleCutback(const ParsedLine& line, DeckState& state) {
-  applyCutbackParameters(line, state.cutback, false);
+  applyCutbackParameters(line, state.cutback);
 }
 
 void handleSteps(const ParsedLine& line, DeckState& state) {
@@ -155,8 +153,8 @@ void handleSteps(const ParsedLine& line, DeckState& state) {
   phase.outputEvery = line.integer("output_every");
   phase.newton = state.newton;
   phase.cutback = state.cutback;
-  applyNewtonParameters(line, phase.newton, false);
-  applyCutbackParameters(line, phase.cutback, false);
+  applyNewtonParameters(line, phase.newton);
+  applyCutbackParameters(line, phase.cutback);
   phase.where = line.where();
   state.spec.phases.push_back(phase);
 }

@@ -10,19 +10,17 @@
 
 namespace cc::deck {
 
-std::vector<ValueDecl> newtonParameters();   // with their initial (default) values
-std::vector<ValueDecl> cutbackParameters();  // with their initial (default) values
+// With their defaults, taken from NewtonSpec and CutbackSpec (spec/problem_spec.hpp), where each
+// default is written once.
+std::vector<ValueDecl> newtonParameters();
+std::vector<ValueDecl> cutbackParameters();
 // Both sets without defaults (absent = the sticky value), cut-back max/factor renamed
 // cutback_max/cutback_factor, as accepted on a `steps` line.
 std::vector<ValueDecl> phaseOnlyParameters();
 
-// Copies the parameters given on `line` (all, defaults included, if includeDefaults) into the
-// settings. The line is a `newton`, `cutback` or `steps` line.
-void applyNewtonParameters(const ParsedLine& line, NewtonSpec& newton, bool includeDefaults);
-void applyCutbackParameters(const ParsedLine& line, CutbackSpec& cutback, bool includeDefaults);
-
-// The settings before any `newton`/`cutback` line: the declared defaults.
-NewtonSpec initialNewton();
-CutbackSpec initialCutback();
+// Copies the parameters given on `line` into the settings. The line is a `newton`, `cutback` or
+// `steps` line.
+void applyNewtonParameters(const ParsedLine& line, NewtonSpec& newton);
+void applyCutbackParameters(const ParsedLine& line, CutbackSpec& cutback);
 
 }  // namespace cc::deck

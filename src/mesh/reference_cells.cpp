@@ -1,51 +1,31 @@
-// Reference cells: node tables checked against gmsh's getElementProperties in the unit tests,
-// shape functions as tensor products of 1D Lagrange polynomials on the nodes -1, 0, 1.
+// Reference cells: the mesh module's view (by CellType) of the one shape-function implementation
+// in fem/shape_functions.hpp, whose node tables the unit tests check against gmsh.
 #include "mesh/reference_cells.hpp"
 
 #include <Eigen/Dense>
 #include <stdexcept>
 
+#include "fem/shape_functions.hpp"
+
 namespace cc::cells {
 namespace {
 
-// gmsh's Hex27 node coordinates; the first 8 are the Hex8 corners.
-constexpr int kHex27Nodes = 27;
-constexpr double kHex27Local[kHex27Nodes][3] = {
-    {-1, -1, -1}, {1, -1, -1}, {1, 1, -1},  {-1, 1, -1}, {-1, -1, 1}, {1, -1, 1}, {1, 1, 1},
-    {-1, 1, 1},   {0, -1, -1}, {-1, 0, -1}, {-1, -1, 0}, {1, 0, -1},  {1, -1, 0}, {0, 1, -1},
-    {1, 1, 0},    {-1, 1, 0},  {0, -1, 1},  {-1, 0, 1},  {1, 0, 1},   {0, 1, 1},  {0, 0, -1},
-    {0, -1, 0},   {-1, 0, 0},  {1, 0, 0},   {0, 1, 0},   {0, 0, 1},   {0, 0, 0}};
-
-// gmsh's Quad9 node coordinates: corners, mid-edges 01, 12, 23, 30, centre; Quad4 = first 4.
-constexpr int kQuad9Nodes = 9;
-constexpr double kQuad9Local[kQuad9Nodes][2] = {{-1, -1}, {1, -1}, {1, 1},  {-1, 1}, {0, -1},
-                                                {1, 0},   {0, 1},  {-1, 0}, {0, 0}};
-
-// Polynomial degree along each local axis: the shape functions are products of 1D Lagrange
-// polynomials of that degree (Hex18: biquadratic in the shell plane, linear in thickness).
-Eigen::Vector3i axisDegrees(CellType type) {
-  switch (type) {
-    case CellType::Hex8:
-      return {1, 1, 1};
-    case CellType::Hex27:
-      return {2, 2, 2};
-    case CellType::Hex18:
-      return {2, 2, 1};
-    case CellType::Quad4:
-      return {1, 1, 0};
-    case CellType::Quad9:
-      return {2, 2, 0};
-  }
-  return {0, 0, 0};
+// The reference cell's shape functions as a 3D evaluation: quads get a constant third axis.
+template <class Family>
+Eigen::VectorXd valuesOf(const Eigen::Vector3d& xi) {
+  return Family::values(xi.head<Family::kDim>());
 }
-
-// 1D Lagrange polynomial of `degree` belonging to the node at `nodeCoordinate` (-1, 0 or 1)
-// and its derivative, evaluated at x. Degree 0 is the constant 1 (unused third axis of quads).
-Eigen::Vector2d lagrange1d(int degree, double nodeCoordinate, double x) {
-  if (degree == 0) return {1.0, 0.0};
-  if (degree == 1) return {0.5 * (1 + nodeCoordinate * x), 0.5 * nodeCoordinate};
-  if (nodeCoordinate == 0) return {1 - x * x, -2 * x};
-  return {0.5 * x * (x + nodeCoordinate), x + 0.5 * nodeCoordinate};
+template <class Family>
+Eigen::Matrix3Xd gradientsOf(const Eigen::Vector3d& xi) {
+  Eigen::Matrix3Xd gradients = Eigen::Matrix3Xd::Zero(3, Family::kNodes);
+  gradients.topRows<Family::kDim>() = Family::gradients(xi.head<Family::kDim>()).transpose();
+  return gradients;
+}
+template <class Family>
+Eigen::Vector3d nodeOf(int node) {
+  Eigen::Vector3d local = Eigen::Vector3d::Zero();
+  local.head<Family::kDim>() = Family::nodeCoordinates().col(node);
+  return local;
 }
 
 std::array<HexFace, 6> buildHexFaces(CellType type) {
@@ -77,17 +57,15 @@ Eigen::Vector3d localNode(CellType type, int node) {
   if (node < 0 || node >= nodesPerCell(type)) throw std::out_of_range("cells::localNode");
   switch (type) {
     case CellType::Hex8:
+      return nodeOf<shape::Hex8>(node);
     case CellType::Hex27:
-      return {kHex27Local[node][0], kHex27Local[node][1], kHex27Local[node][2]};
-    case CellType::Hex18: {
-      // Nodes 0-8: Quad9 at zeta = -1, nodes 9-17: the same Quad9 at zeta = +1.
-      const int inPlane = node % kQuad9Nodes;
-      const double zeta = node < kQuad9Nodes ? -1.0 : 1.0;
-      return {kQuad9Local[inPlane][0], kQuad9Local[inPlane][1], zeta};
-    }
+      return nodeOf<shape::Hex27>(node);
+    case CellType::Hex18:
+      return nodeOf<shape::Hex18>(node);
     case CellType::Quad4:
+      return nodeOf<shape::Quad4>(node);
     case CellType::Quad9:
-      return {kQuad9Local[node][0], kQuad9Local[node][1], 0.0};
+      return nodeOf<shape::Quad9>(node);
   }
   return Eigen::Vector3d::Zero();
 }
@@ -100,32 +78,35 @@ int nodeAt(CellType type, const Eigen::Vector3d& local) {
 }
 
 Eigen::VectorXd shapeValues(CellType type, const Eigen::Vector3d& xi) {
-  const Eigen::Vector3i degrees = axisDegrees(type);
-  Eigen::VectorXd values(nodesPerCell(type));
-  for (int node = 0; node < values.size(); ++node) {
-    const Eigen::Vector3d local = localNode(type, node);
-    values(node) = 1.0;
-    for (int axis = 0; axis < 3; ++axis) {
-      values(node) *= lagrange1d(degrees(axis), local(axis), xi(axis))(0);
-    }
+  switch (type) {
+    case CellType::Hex8:
+      return valuesOf<shape::Hex8>(xi);
+    case CellType::Hex27:
+      return valuesOf<shape::Hex27>(xi);
+    case CellType::Hex18:
+      return valuesOf<shape::Hex18>(xi);
+    case CellType::Quad4:
+      return valuesOf<shape::Quad4>(xi);
+    case CellType::Quad9:
+      return valuesOf<shape::Quad9>(xi);
   }
-  return values;
+  return {};
 }
 
 Eigen::Matrix3Xd shapeGradients(CellType type, const Eigen::Vector3d& xi) {
-  const Eigen::Vector3i degrees = axisDegrees(type);
-  Eigen::Matrix3Xd gradients(3, nodesPerCell(type));
-  for (int node = 0; node < gradients.cols(); ++node) {
-    const Eigen::Vector3d local = localNode(type, node);
-    Eigen::Matrix<double, 2, 3> factors;  // (value, derivative) of each axis' polynomial
-    for (int axis = 0; axis < 3; ++axis) {
-      factors.col(axis) = lagrange1d(degrees(axis), local(axis), xi(axis));
-    }
-    gradients(0, node) = factors(1, 0) * factors(0, 1) * factors(0, 2);
-    gradients(1, node) = factors(0, 0) * factors(1, 1) * factors(0, 2);
-    gradients(2, node) = factors(0, 0) * factors(0, 1) * factors(1, 2);
+  switch (type) {
+    case CellType::Hex8:
+      return gradientsOf<shape::Hex8>(xi);
+    case CellType::Hex27:
+      return gradientsOf<shape::Hex27>(xi);
+    case CellType::Hex18:
+      return gradientsOf<shape::Hex18>(xi);
+    case CellType::Quad4:
+      return gradientsOf<shape::Quad4>(xi);
+    case CellType::Quad9:
+      return gradientsOf<shape::Quad9>(xi);
   }
-  return gradients;
+  return {};
 }
 
 double jacobianDeterminant(CellType type, const Eigen::Matrix3Xd& nodes,

@@ -1,6 +1,6 @@
 // Reference cells of the mesh module: local node coordinates (gmsh numbering; Hex18 as in
-// mesh.hpp), tensor-product Lagrange shape functions and the outward faces of hexahedra.
-// Used for mesh checks and node reordering only; elements use src/fem/shape_functions.
+// mesh.hpp), shape functions and the outward faces of hexahedra, by CellType. Used for mesh checks
+// and node reordering; the shape functions themselves are fem/shape_functions.hpp's.
 #pragma once
 
 #include <Eigen/Core>

@@ -7,10 +7,10 @@
 
 #include "common/errors.hpp"
 #include "common/name_matching.hpp"
-#include "elements/element_factory.hpp"
 #include "materials/material.hpp"
 #include "mesh/gmsh_import.hpp"
 #include "mesh/hex18.hpp"
+#include "model/element_factory.hpp"
 #include "model/model.hpp"
 
 namespace cc {

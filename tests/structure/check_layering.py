@@ -51,6 +51,11 @@ def main():
         return self_test()
     problems = find_problems()
     modules = sorted(p.name for p in (ROOT / "src").iterdir() if p.is_dir())
+    for document in ("README.md", "docs/architecture.md"):
+        text = (ROOT / document).read_text()
+        for module in modules:
+            if f"src/{module}" not in text:
+                problems.append(f"{document}: module src/{module} is not described")
     for problem in problems:
         print(problem)
     print(f"check_layering: {len(modules)} modules, {len(problems)} backward or unknown includes")

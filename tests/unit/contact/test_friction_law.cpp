@@ -30,7 +30,7 @@ struct EllipseCase {
 EllipseCase makeSetup() {
   EllipseCase s;
   PointLayout& layout = s.point.layout;
-  layout.masterType = SegmentType::Quad4;
+  layout.masterType = shape::SurfaceType::Quad4;
   layout.masterCount = 4;
   for (int k = 0; k < 4; ++k) layout.masterLocal[k] = k;
   layout.slaveCount = 1;

@@ -38,13 +38,14 @@ NodeMatrix<double> warpedQuad4() {
   return nodes;
 }
 
-SurfaceFrame<double> frameAt(SegmentType type, const NodeMatrix<double>& nodes, Vector2d xi) {
+SurfaceFrame<double> frameAt(shape::SurfaceType type, const NodeMatrix<double>& nodes,
+                             Vector2d xi) {
   return surfaceFrame<double>(type, nodes, xi[0], xi[1]);
 }
 
 // Parametric derivatives, the Weingarten formula (13) and the Gauss-Codazzi formula (14)
 // against central finite differences of the frame itself.
-void checkFrameAgainstFiniteDifferences(SegmentType type, const NodeMatrix<double>& nodes) {
+void checkFrameAgainstFiniteDifferences(shape::SurfaceType type, const NodeMatrix<double>& nodes) {
   const Vector2d xi(0.31, -0.42);
   const double h = 1e-6;  // central differences: error O(h^2) ~ 1e-12, round-off ~ eps/h ~ 1e-10
   const double tolerance = 1e-8;
@@ -79,11 +80,11 @@ void checkFrameAgainstFiniteDifferences(SegmentType type, const NodeMatrix<doubl
 }
 
 TEST(SurfaceFrame, DistortedQuad4AgainstFiniteDifferences) {
-  checkFrameAgainstFiniteDifferences(SegmentType::Quad4, warpedQuad4());
+  checkFrameAgainstFiniteDifferences(shape::SurfaceType::Quad4, warpedQuad4());
 }
 
 TEST(SurfaceFrame, CurvedQuad9AgainstFiniteDifferences) {
-  checkFrameAgainstFiniteDifferences(SegmentType::Quad9, curvedQuad9());
+  checkFrameAgainstFiniteDifferences(shape::SurfaceType::Quad9, curvedQuad9());
 }
 
 // Sphere of radius R parametrized by (theta, phi): a = diag(R^2, R^2 sin^2 theta),
@@ -145,7 +146,7 @@ TEST(SurfaceFrame, ParabolicCylinderQuad9Analytic) {
     nodes.col(k) << x, hy * corner[k][1], c * x * x;
   }
   const Vector2d xi(0.37, -0.6);
-  const SurfaceFrame<double> f = frameAt(SegmentType::Quad9, nodes, xi);
+  const SurfaceFrame<double> f = frameAt(shape::SurfaceType::Quad9, nodes, xi);
   const double x = x0 + hx * xi[0];
   const double slope2 = 1 + 4 * c * c * x * x;
   EXPECT_NEAR(f.rho.z(), c * x * x, 1e-14);
@@ -164,11 +165,11 @@ TEST(Projection, ConvergesOrthogonallyOnCurvedSegment) {
   const NodeMatrix<double> nodes = curvedQuad9();
   const Vector3d point(0.4, -0.3, 0.35);
   const ProjectionResult p =
-      closestPointProjection(SegmentType::Quad9, nodes, point, Vector2d::Zero());
+      closestPointProjection(shape::SurfaceType::Quad9, nodes, point, Vector2d::Zero());
   ASSERT_TRUE(p.converged);
   EXPECT_TRUE(p.inside());
   EXPECT_LE(p.iterations, 8);
-  const SurfaceFrame<double> f = frameAt(SegmentType::Quad9, nodes, p.xi);
+  const SurfaceFrame<double> f = frameAt(shape::SurfaceType::Quad9, nodes, p.xi);
   for (int i = 0; i < 2; ++i) EXPECT_NEAR((point - f.rho).dot(f.rhoCov[i]), 0.0, 1e-13);
   // The distance vector is along the normal.
   EXPECT_NEAR(std::abs((point - f.rho).normalized().dot(f.normal)), 1.0, 1e-13);
@@ -176,8 +177,8 @@ TEST(Projection, ConvergesOrthogonallyOnCurvedSegment) {
 
 TEST(Projection, ReportsParameterOutsideSegment) {
   const NodeMatrix<double> nodes = warpedQuad4();
-  const ProjectionResult p =
-      closestPointProjection(SegmentType::Quad4, nodes, Vector3d(1.9, 0.1, 0.2), Vector2d::Zero());
+  const ProjectionResult p = closestPointProjection(shape::SurfaceType::Quad4, nodes,
+                                                    Vector3d(1.9, 0.1, 0.2), Vector2d::Zero());
   ASSERT_TRUE(p.converged);
   EXPECT_FALSE(p.inside());
   EXPECT_GT(p.xi[0], 1.0);
@@ -189,7 +190,7 @@ TEST(Projection, DifferentiableProjectionMatchesFiniteDifferences) {
   const NodeMatrix<double> nodes = curvedQuad9();
   const Vector3d point(0.2, 0.1, 0.3);
   const ProjectionResult base =
-      closestPointProjection(SegmentType::Quad9, nodes, point, Vector2d::Zero());
+      closestPointProjection(shape::SurfaceType::Quad9, nodes, point, Vector2d::Zero());
   ASSERT_TRUE(base.converged);
   const int dofs = 3 * 10;
   NodeMatrix<AD> active(3, 9);
@@ -198,7 +199,7 @@ TEST(Projection, DifferentiableProjectionMatchesFiniteDifferences) {
     for (int c = 0; c < 3; ++c) active(c, k) = AD(nodes(c, k), dofs, 3 * k + c);
   }
   for (int c = 0; c < 3; ++c) activePoint[c] = AD(point[c], dofs, 27 + c);
-  const auto xi = differentiableProjection(SegmentType::Quad9, active, activePoint, base.xi);
+  const auto xi = differentiableProjection(shape::SurfaceType::Quad9, active, activePoint, base.xi);
   const double h = 1e-6;
   for (int dof = 0; dof < dofs; ++dof) {
     NodeMatrix<double> plusNodes = nodes, minusNodes = nodes;
@@ -211,9 +212,9 @@ TEST(Projection, DifferentiableProjectionMatchesFiniteDifferences) {
       minusPoint[dof - 27] -= h;
     }
     const Vector2d plus =
-        closestPointProjection(SegmentType::Quad9, plusNodes, plusPoint, base.xi).xi;
+        closestPointProjection(shape::SurfaceType::Quad9, plusNodes, plusPoint, base.xi).xi;
     const Vector2d minus =
-        closestPointProjection(SegmentType::Quad9, minusNodes, minusPoint, base.xi).xi;
+        closestPointProjection(shape::SurfaceType::Quad9, minusNodes, minusPoint, base.xi).xi;
     const Vector2d finiteDifference = (plus - minus) / (2 * h);
     EXPECT_NEAR(xi[0].derivatives()[dof], finiteDifference[0], 1e-8);
     EXPECT_NEAR(xi[1].derivatives()[dof], finiteDifference[1], 1e-8);

@@ -49,8 +49,8 @@ TEST(MasterSurfaceRidge, PointUnderRidgeStaysOnItsSegment) {
   const Vector3d point(1, 0.5, -depth);
   // The case this test is about: beyond the edge on both segments, by far more than round-off.
   const ProjectionResult onLeft =
-      closestPointProjection(SegmentType::Quad4, master.segmentNodes(0, ridge.coordinates), point,
-                             Eigen::Vector2d::Zero());
+      closestPointProjection(shape::SurfaceType::Quad4, master.segmentNodes(0, ridge.coordinates),
+                             point, Eigen::Vector2d::Zero());
   ASSERT_TRUE(onLeft.converged);
   EXPECT_NEAR(onLeft.xi[0] - 1, excessBeyondEdge(depth, slope), 1e-12);
   for (int start : {0, 1}) {

@@ -58,10 +58,10 @@ struct PointCase {
 };
 
 // Master nodes are placed first in the item, then the slave nodes.
-PointLayout makeLayout(SegmentType masterType, int slaveCount) {
+PointLayout makeLayout(shape::SurfaceType masterType, int slaveCount) {
   PointLayout layout;
   layout.masterType = masterType;
-  layout.masterCount = segmentNodes(masterType);
+  layout.masterCount = shape::surfaceNodes(masterType);
   for (int k = 0; k < layout.masterCount; ++k) layout.masterLocal[k] = k;
   layout.slaveCount = slaveCount;
   for (int a = 0; a < slaveCount; ++a) layout.slaveLocal[a] = layout.masterCount + a;
@@ -85,7 +85,7 @@ LawParameters law(double friction) {
 
 // NTS: one slave node at `slavePoint` against `master`; slip `slipScale` times a fixed
 // direction in the parameter plane; previous traction of magnitude `traction`.
-PointCase nodeToSegment(const NodeMatrix<double>& master, SegmentType type,
+PointCase nodeToSegment(const NodeMatrix<double>& master, shape::SurfaceType type,
                         const Vector3d& slavePoint, double friction, double slipScale,
                         double traction) {
   PointCase c;
@@ -106,16 +106,17 @@ PointCase nodeToSegment(const NodeMatrix<double>& master, SegmentType type,
 }
 
 // STS: Gauss point `gauss` of a slave Quad4 against `master`.
-PointCase segmentToSegment(const NodeMatrix<double>& master, SegmentType type, double friction,
-                           double slipScale, double traction, bool freezeArea,
+PointCase segmentToSegment(const NodeMatrix<double>& master, shape::SurfaceType type,
+                           double friction, double slipScale, double traction, bool freezeArea,
                            double depth = 0.003) {
   PointCase c;
   c.setup.kind = PointKind::SegmentToSegment;
   c.setup.layout = makeLayout(type, 4);
   const Vector2d gauss(0.31, -0.57);
-  const SurfaceShape<double> shape = surfaceShape(SegmentType::Quad4, gauss[0], gauss[1]);
+  const shape::SurfaceShape<double> shape =
+      shape::surfaceShape(shape::SurfaceType::Quad4, gauss[0], gauss[1]);
   for (int a = 0; a < 4; ++a) c.setup.layout.slaveShape[a] = shape.value[a];
-  c.setup.slave.segmentType = SegmentType::Quad4;
+  c.setup.slave.segmentType = shape::SurfaceType::Quad4;
   c.setup.slave.gaussPoint = gauss;
   c.setup.slave.gaussWeight = 1.0;
   c.setup.law = law(friction);
@@ -144,14 +145,14 @@ PointCase analyticalSurface(const RigidSurface& surface, double friction, double
                             double traction) {
   PointCase c;
   c.setup.kind = PointKind::SegmentToAnalytical;
-  c.setup.layout = makeLayout(SegmentType::Quad4, 0);
+  c.setup.layout = makeLayout(shape::SurfaceType::Quad4, 0);
   c.setup.law = law(friction);
   c.setup.surface = &surface;
   c.setup.parameter = Vector2d(-0.34, 0.52);
   c.setup.gaussWeight = 1.0;
   c.nodes = slaveQuad4(0.004);  // reused as the master: its normal points to -z
-  const SurfaceFrame<double> f =
-      surfaceFrame<double>(SegmentType::Quad4, c.nodes, c.setup.parameter[0], c.setup.parameter[1]);
+  const SurfaceFrame<double> f = surfaceFrame<double>(shape::SurfaceType::Quad4, c.nodes,
+                                                      c.setup.parameter[0], c.setup.parameter[1]);
   c.setup.history.projected = true;
   c.setup.history.masterPoint = f.rho - slipScale * (f.rhoCov[0] + 0.5 * f.rhoCov[1]);
   c.setup.history.traction = traction * (f.rhoCov[0] - f.rhoCov[1]).normalized();
@@ -233,8 +234,8 @@ void expectNormalTangentExactUpToSecondOrder(MakeCase makeCase, double depth) {
 TEST(NormalTangent, NodeToSegmentFlatIsExactToSecondOrderInGap) {
   expectNormalTangentExactUpToSecondOrder(
       [](double depth) {
-        return nodeToSegment(flatQuad4(), SegmentType::Quad4, Vector3d(0.21, -0.33, -depth), 0, 0,
-                             0);
+        return nodeToSegment(flatQuad4(), shape::SurfaceType::Quad4, Vector3d(0.21, -0.33, -depth),
+                             0, 0, 0);
       },
       4e-3);
 }
@@ -243,18 +244,19 @@ TEST(NormalTangent, NodeToSegmentCurvedIsExactToSecondOrderInGap) {
   // The curved master passes below the slave point at about z = -0.0098.
   expectNormalTangentExactUpToSecondOrder(
       [](double depth) {
-        return nodeToSegment(curvedQuad9(), SegmentType::Quad9,
+        return nodeToSegment(curvedQuad9(), shape::SurfaceType::Quad9,
                              Vector3d(0.27, 0.18, -0.0098 - depth), 0, 0, 0);
       },
       4e-3);
 }
 
 TEST(NormalTangent, SegmentToSegmentCurvedWithConstantAreaIsExactToSecondOrderInGap) {
-  const PointCase probe = segmentToSegment(curvedQuad9(), SegmentType::Quad9, 0, 0, 0, true, 0.0);
+  const PointCase probe =
+      segmentToSegment(curvedQuad9(), shape::SurfaceType::Quad9, 0, 0, 0, true, 0.0);
   const double surfaceHeight = evaluatePoint(probe.setup, probe.nodes).kinematics.gap;
   expectNormalTangentExactUpToSecondOrder(
       [&](double depth) {
-        return segmentToSegment(curvedQuad9(), SegmentType::Quad9, 0, 0, 0, true,
+        return segmentToSegment(curvedQuad9(), shape::SurfaceType::Quad9, 0, 0, 0, true,
                                 depth + surfaceHeight);
       },
       4e-3);
@@ -263,7 +265,8 @@ TEST(NormalTangent, SegmentToSegmentCurvedWithConstantAreaIsExactToSecondOrderIn
 // Without the rotational and curvature parts the normal tangent is not exact on a curved
 // master: the parts matter (guards against a test that cannot fail).
 TEST(NormalTangent, MainPartAloneIsNotExactOnCurvedMaster) {
-  const PointCase c = nodeToSegment(curvedQuad9(), SegmentType::Quad9, kSlaveBelowCurved, 0, 0, 0);
+  const PointCase c =
+      nodeToSegment(curvedQuad9(), shape::SurfaceType::Quad9, kSlaveBelowCurved, 0, 0, 0);
   TangentParts mainOnly;
   mainOnly.normalRotational = mainOnly.normalCurvature = false;
   EXPECT_GT(relativeError(tangent(c, TangentMode::Paper, mainOnly), finiteDifferenceTangent(c)),
@@ -283,21 +286,22 @@ TEST(ExactTangent, MatchesFiniteDifferencesForAllKindsAndStates) {
   static const RigidSurface curvedSurface = parabolicCylinder();
   const ExactCase cases[] = {
       {"nts flat stick",
-       nodeToSegment(flatQuad4(), SegmentType::Quad4, kSlaveBelowFlat, 0.3, 1e-3, 0.5),
+       nodeToSegment(flatQuad4(), shape::SurfaceType::Quad4, kSlaveBelowFlat, 0.3, 1e-3, 0.5),
        ContactState::Stick},
       {"nts flat slip",
-       nodeToSegment(flatQuad4(), SegmentType::Quad4, kSlaveBelowFlat, 0.3, 5e-2, 0.5),
+       nodeToSegment(flatQuad4(), shape::SurfaceType::Quad4, kSlaveBelowFlat, 0.3, 5e-2, 0.5),
        ContactState::Slip},
       {"nts curved stick",
-       nodeToSegment(curvedQuad9(), SegmentType::Quad9, kSlaveBelowCurved, 0.5, 1e-3, 1.0),
+       nodeToSegment(curvedQuad9(), shape::SurfaceType::Quad9, kSlaveBelowCurved, 0.5, 1e-3, 1.0),
        ContactState::Stick},
       {"nts curved slip",
-       nodeToSegment(curvedQuad9(), SegmentType::Quad9, kSlaveBelowCurved, 0.3, 5e-2, 4.0),
+       nodeToSegment(curvedQuad9(), shape::SurfaceType::Quad9, kSlaveBelowCurved, 0.3, 5e-2, 4.0),
        ContactState::Slip},
-      {"sts flat stick", segmentToSegment(flatQuad4(), SegmentType::Quad4, 0.5, 1e-3, 1.0, false),
+      {"sts flat stick",
+       segmentToSegment(flatQuad4(), shape::SurfaceType::Quad4, 0.5, 1e-3, 1.0, false),
        ContactState::Stick},
       {"sts curved slip",
-       segmentToSegment(curvedQuad9(), SegmentType::Quad9, 0.3, 5e-2, 2.0, false, 0.03),
+       segmentToSegment(curvedQuad9(), shape::SurfaceType::Quad9, 0.3, 5e-2, 2.0, false, 0.03),
        ContactState::Slip},
       {"stas plane stick", analyticalSurface(flatSurface, 0.5, 1e-3, 1.0), ContactState::Stick},
       {"stas parabola slip", analyticalSurface(curvedSurface, 0.3, 5e-2, 2.0), ContactState::Slip},
@@ -314,7 +318,7 @@ TEST(ExactTangent, MatchesFiniteDifferencesForAllKindsAndStates) {
 
 TEST(PaperTangent, StickTangentIsSymmetric) {
   const PointCase c =
-      nodeToSegment(curvedQuad9(), SegmentType::Quad9, kSlaveBelowCurved, 0.5, 1e-3, 1.0);
+      nodeToSegment(curvedQuad9(), shape::SurfaceType::Quad9, kSlaveBelowCurved, 0.5, 1e-3, 1.0);
   ASSERT_EQ(stateOf(c), ContactState::Stick);
   const MatrixXd K = tangent(c, TangentMode::Paper, {});
   EXPECT_LT((K - K.transpose()).norm(), 1e-12 * K.norm());
@@ -322,7 +326,7 @@ TEST(PaperTangent, StickTangentIsSymmetric) {
 
 TEST(PaperTangent, SlideTangentIsUnsymmetric) {
   const PointCase c =
-      nodeToSegment(curvedQuad9(), SegmentType::Quad9, kSlaveBelowCurved, 0.3, 5e-2, 4.0);
+      nodeToSegment(curvedQuad9(), shape::SurfaceType::Quad9, kSlaveBelowCurved, 0.3, 5e-2, 4.0);
   ASSERT_EQ(stateOf(c), ContactState::Slip);
   const MatrixXd K = tangent(c, TangentMode::Paper, {});
   EXPECT_GT((K - K.transpose()).norm(), 1e-3 * K.norm());
@@ -366,14 +370,15 @@ PointCase nodeToSegmentScaled(bool curved, double s, double slip) {
   const double surface = curved ? -0.0098 : 0.0;  // master height below the slave point
   const Vector3d point = curved ? Vector3d(0.27, 0.18, surface - s) : Vector3d(0.21, -0.33, -s);
   return nodeToSegment(curved ? curvedQuad9() : flatQuad4(),
-                       curved ? SegmentType::Quad9 : SegmentType::Quad4, point, kFriction, slip * s,
-                       kTractionFraction * kFriction * kPenaltyNormal * s);
+                       curved ? shape::SurfaceType::Quad9 : shape::SurfaceType::Quad4, point,
+                       kFriction, slip * s, kTractionFraction * kFriction * kPenaltyNormal * s);
 }
 
 PointCase segmentToSegmentScaled(double s, double slip) {
-  const PointCase probe = segmentToSegment(curvedQuad9(), SegmentType::Quad9, 0, 0, 0, true, 0.0);
+  const PointCase probe =
+      segmentToSegment(curvedQuad9(), shape::SurfaceType::Quad9, 0, 0, 0, true, 0.0);
   const double height = evaluatePoint(probe.setup, probe.nodes).kinematics.gap;
-  return segmentToSegment(curvedQuad9(), SegmentType::Quad9, kFriction, slip * s,
+  return segmentToSegment(curvedQuad9(), shape::SurfaceType::Quad9, kFriction, slip * s,
                           kTractionFraction * kFriction * kPenaltyNormal * s, true, height + s);
 }
 

@@ -1,4 +1,5 @@
-// Creates the element kernel a deck `elements` line asks for.
+// Creates the element kernel a deck `elements` line asks for: the spec-to-runtime translation of
+// element blocks, beside the rest of it in the model builder.
 #pragma once
 
 #include <memory>

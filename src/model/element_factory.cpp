@@ -1,5 +1,5 @@
 // Element kernel factory: deck element type -> ElementKernel.
-#include "elements/element_factory.hpp"
+#include "model/element_factory.hpp"
 
 #include <fmt/format.h>
 

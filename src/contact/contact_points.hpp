@@ -1,0 +1,84 @@
+// The contact points of a pair and how each contact kind creates them: slave nodes with their
+// tributary areas (NTS), slave Gauss points (STS), master Gauss points against a rigid surface
+// (STAS). A point carries its slave side, its search state, its item layout, its committed
+// history and the trial state of the current iteration; ContactPair evaluates and commits them.
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <string>
+#include <vector>
+
+#include "contact/point_evaluation.hpp"
+#include "mesh/mesh.hpp"
+#include "records/result_records.hpp"
+
+namespace cc::contact {
+
+// The only kind-dependent decision outside the point factories and point_kinematics.hpp: NTS and
+// STS points follow the master segment they project onto; an STAS point sits on a fixed master
+// segment and Gauss point and meets the rigid surface along its normal line, eq. (117).
+constexpr bool searchesMasterSegments(PointKind kind) {
+  return kind != PointKind::SegmentToAnalytical;
+}
+
+// What the last evaluation found at a point (the trial state of the current iteration).
+struct PointTrial {
+  bool valid = false;
+  Eigen::Vector2d xi = Eigen::Vector2d::Zero();
+  Eigen::Vector3d slavePoint = Eigen::Vector3d::Zero();
+  Eigen::Vector3d masterPoint = Eigen::Vector3d::Zero();
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+  Eigen::Vector3d traction = Eigen::Vector3d::Zero();           // T (Cartesian)
+  Eigen::Vector2d tractionCovariant = Eigen::Vector2d::Zero();  // T_i
+  double gap = 0;
+  double normalTraction = 0;
+  double weight = 0;
+  double slipIncrement = 0;
+  ContactState state = ContactState::Open;
+  bool symmetric = true;
+};
+
+struct PairPoint {
+  // Slave side (fixed): nodes and shape values at the point; NTS area or STS Gauss point.
+  int slaveCount = 0;
+  std::array<int, 9> slaveNodes{};
+  std::array<double, 9> slaveShape{};
+  SlaveSide slave;
+  // STAS: the fixed master segment and Gauss point.
+  int fixedSegment = -1;
+  Eigen::Vector2d gaussPoint = Eigen::Vector2d::Zero();
+  double gaussWeight = 0;
+  // Search state of the current iteration.
+  int segment = -1;
+  Eigen::Vector2d xi = Eigen::Vector2d::Zero();
+  // The search state right after the last commit: a cut-back restores it, so that the retried
+  // step starts its search exactly where the first attempt did.
+  int committedSearchSegment = -1;
+  Eigen::Vector2d committedSearchXi = Eigen::Vector2d::Zero();
+  // The item: node list and where the slave/master/previous-master nodes sit in it.
+  std::vector<int> nodes;
+  PointLayout layout;
+  PointHistory committed;
+  PointTrial trial;
+};
+
+// NTS: one point per slave node, weighted by its tributary area in the reference configuration
+// (the sum over its faces of the integral of its shape function, held constant like ds in the
+// paper's linearization).
+std::vector<PairPoint> nodeToSegmentPoints(const Mesh& mesh, const FaceSet& slave);
+// STS: integrationPoints^2 Gauss points per slave segment.
+std::vector<PairPoint> segmentToSegmentPoints(const FaceSet& slave, int integrationPoints);
+// STAS: integrationPoints^2 Gauss points per master segment, each on its fixed segment.
+std::vector<PairPoint> segmentToAnalyticalPoints(const FaceSet& master, int integrationPoints);
+
+// r_s: the slave point in the coordinates x.
+Eigen::Vector3d slavePosition(const PairPoint& point, const Eigen::Matrix3Xd& x);
+
+// The trial state of a point from its evaluation.
+PointTrial trialOf(const PointEvaluation& evaluation, const LawParameters& law);
+
+// The output record of the points' last evaluated (after commit: converged) state.
+ContactPairRecord pairRecord(const std::string& name, const std::vector<PairPoint>& points);
+
+}  // namespace cc::contact
