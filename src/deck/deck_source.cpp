@@ -88,10 +88,16 @@ void IncludeExpander::include(const LogicalLine& line, const OpenFile& from) {
     for (std::size_t j = i; j < stack_.size(); ++j) cycle += stack_[j].displayPath + " -> ";
     throw InputError(path.where, fmt::format("include cycle: {}{}", cycle, target.displayPath));
   }
+  if (stack_.size() >= kMaxIncludeDepth) {
+    throw InputError(path.where,
+                     fmt::format("includes nested more than {} deep (from {}): flatten the chain",
+                                 kMaxIncludeDepth, stack_.front().displayPath));
+  }
   const std::string text = readDeckFile(
       target.displayPath, path.where,
       fmt::format("include file '{}' (looked for '{}')", path.text, target.identity.string()));
   if (appended_.insert(target.identity).second) {
+    out_.files.push_back(target.identity.string());
     out_.text += fmt::format("\n# ---- included file: {} ----\n", target.displayPath);
     out_.text += text;
   }
@@ -125,6 +131,7 @@ std::string readDeckFile(const std::string& path, const SourceLocation& requeste
 DeckSource loadDeckSource(const std::string& text, const std::string& path) {
   DeckSource source;
   source.text = text;
+  source.files.push_back(identityOf(path).string());
   IncludeExpander expander(source);
   expander.expand(text, OpenFile{path, identityOf(path)});
   return source;
