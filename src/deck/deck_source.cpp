@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -11,6 +12,7 @@
 
 #include "common/errors.hpp"
 #include "common/name_matching.hpp"
+#include "common/utf8.hpp"
 #include "deck/keyword_decl.hpp"
 #include "deck/parsed_line.hpp"
 
@@ -124,6 +126,18 @@ std::string readDeckFile(const std::string& path, const SourceLocation& requeste
   std::string text = contents.str();
   if (text.find('\0') != std::string::npos) {
     throw InputError(requestedAt, fmt::format("{} is not a text file", what));
+  }
+  // Names from the deck end up in the XDMF file (XML) and the deck text in a UTF-8 attribute: a
+  // Latin-1 byte there makes them invalid, so it is refused where it stands.
+  if (const auto bad = firstInvalidUtf8(text)) {
+    const std::size_t lineStart =
+        text.rfind('\n', *bad) == std::string::npos ? 0 : text.rfind('\n', *bad) + 1;
+    const int line = 1 + static_cast<int>(std::count(text.begin(), text.begin() + *bad, '\n'));
+    const int column = 1 + static_cast<int>(*bad - lineStart);
+    throw InputError(SourceLocation{path, line, column},
+                     fmt::format("byte 0x{:02x} is not UTF-8 text (or is a control character); "
+                                 "save the file as UTF-8",
+                                 static_cast<unsigned char>(text[*bad])));
   }
   return text;
 }

@@ -10,6 +10,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "common/utf8.hpp"
 #include "output/reactions_csv.hpp"
 #include "output/restart_io.hpp"
 #include "output/results_layout.hpp"
@@ -128,6 +129,10 @@ void checkOutputWritable(const std::string& h5Path, const OutputSelection& selec
       throw OutputError("cannot write results file '" + h5Path +
                         "': its XDMF sidecar would be the same file; name the results file "
                         "*.h5");
+    // The XDMF file names the results file in XML, which must be UTF-8.
+    if (firstInvalidUtf8(fs::path(h5Path).filename().string()))
+      throw OutputError("cannot write results file '" + escapedBytes(h5Path) +
+                        "' with an XDMF sidecar: its name is not UTF-8 text; rename it");
     probeWritable(xdmf, "XDMF file", true);
     checkReplaceable(xdmf, OutputKind::Xdmf, inputs);
   }

@@ -3,7 +3,8 @@
 
 --case inputs: `run DECK -o X` refuses (exit 6, the file untouched byte for byte) when X is the
   deck, a file it includes, the mesh, or an unrelated file CovContact did not write; `-o run.xdmf`
-  (the XDMF sidecar would replace the results) too; a sidecar that exists and was not written by
+  (the XDMF sidecar would replace the results) and a name that is not UTF-8 (the XDMF file would
+  not be well-formed) too; a sidecar that exists and was not written by
   CovContact is not overwritten; a CovContact results file is replaced (exit 0).
 --case concurrent: while one run writes a results file, a second run on the same file stops
   with exit 6 naming it, before truncating anything; `compare` of the file in progress reads its
@@ -90,6 +91,9 @@ def inputs_case(args):
     refused(args, decks, unrelated, "was not written by CovContact",
             "-o an unrelated file")
     refused(args, decks, "run.xdmf", "its XDMF sidecar would be the same file", "-o run.xdmf")
+    # A Latin-1 results name would be written into the XDMF file (XML, UTF-8).
+    refused(args, decks, os.fsdecode(b"caf\xe9.h5"), "its name is not UTF-8 text",
+            "-o a Latin-1 name")
     check(not os.path.exists(os.path.join(decks, "run.xdmf")), "-o run.xdmf created run.xdmf")
     foreign_xdmf = os.path.join(decks, "mine.xdmf")
     with open(foreign_xdmf, "w") as stream:
