@@ -1,7 +1,11 @@
 // The `covcontact` command: parses the command line (CLI11) and dispatches to run, check and
 // compare. Exit codes are listed in --help and in common/errors.hpp.
+#include <fmt/format.h>
+
 #include <CLI/CLI.hpp>
+#include <csignal>
 #include <iostream>
+#include <limits>
 
 #include "app/commands.hpp"
 #include "common/errors.hpp"
@@ -25,9 +29,32 @@ std::string joinArguments(int argc, char** argv) {
   return line;
 }
 
+// A whole number from 1 to INT_MAX. CLI::PositiveNumber would say "not in range" and print the
+// largest double in full (300 digits) for `--threads 0`.
+// CLI11 puts the option's name before the message.
+CLI::Validator wholeNumberFromOne() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        try {
+          std::size_t used = 0;
+          const long long value = std::stoll(text, &used);
+          if (used == text.size() && value >= 1 && value <= std::numeric_limits<int>::max())
+            return {};
+        } catch (const std::exception&) {
+          // not a number, or out of long long's range: the message below
+        }
+        return fmt::format("must be a whole number from 1 to {}, got '{}'",
+                           std::numeric_limits<int>::max(), text);
+      },
+      "INT>=1");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  // A closed pipe on stdout (`covcontact run DECK | head -1`) must not kill the run: writes then
+  // fail with EPIPE, which printOut reports once, and the run goes on to finish its results.
+  std::signal(SIGPIPE, SIG_IGN);
   CLI::App cli{
       "CovContact: 3D frictional contact at large deformations (covariant description, "
       "Konyukhov & Schweizerhof 2005)"};
@@ -41,7 +68,7 @@ int main(int argc, char** argv) {
   runCommand->add_option("-o,--output", run.output,
                          "Results file (HDF5; .xdmf and .csv beside it)");
   runCommand->add_option("--threads", run.threads, "Assembly threads (default: all cores)")
-      ->check(CLI::PositiveNumber);
+      ->check(wholeNumberFromOne());
   runCommand->add_flag("-q,--quiet", run.quiet, "Print only the final summary");
   auto* restartOption =
       runCommand
@@ -52,7 +79,7 @@ int main(int argc, char** argv) {
   runCommand
       ->add_option("--from-step", run.restartStep,
                    "Step of the --restart file to continue from (default: its last step)")
-      ->check(CLI::PositiveNumber)
+      ->check(wholeNumberFromOne())
       ->needs(restartOption);
 
   std::string checkDeck;

@@ -4,14 +4,33 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <cerrno>
+#include <cstring>
+
 namespace cc::app {
+
+void printErr(const std::string& text) {
+  std::fputs(text.c_str(), stderr);  // unlike fmt::print, never throws if stderr is gone
+}
+
+void printOut(const std::string& text) {
+  static bool closed = false;
+  if (closed) return;
+  if (std::fwrite(text.data(), 1, text.size(), stdout) == text.size() && std::fflush(stdout) == 0)
+    return;
+  closed = true;
+  std::clearerr(stdout);
+  printErr(
+      fmt::format("covcontact: standard output is closed ({}); the run goes on without "
+                  "progress output\n",
+                  std::strerror(errno)));
+}
 
 Progress::Progress(int plannedSteps, bool quiet)
     : plannedSteps_(plannedSteps), quiet_(quiet), terminal_(isatty(fileno(stdout)) != 0) {}
 
 void Progress::printLive(const std::string& text) {
-  fmt::print("\r{:<79}", text);
-  std::fflush(stdout);
+  printOut(fmt::format("\r{:<79}", text));
   liveLineOpen_ = true;
 }
 
@@ -32,20 +51,19 @@ void Progress::stepConverged(int step, double time, int iterations, int cutbacks
   if (terminal_) {
     printLive(text);
   } else {
-    fmt::print("{}\n", text);
-    std::fflush(stdout);
+    printOut(text + "\n");
   }
 }
 
 void Progress::cutback(const CutbackRecord& r) {
   finish();
-  fmt::print(stderr, "cut-back at step {} (t = {:.6g}): {}; new dt = {:.3g}\n", r.step, r.time,
-             r.reason, r.newDt);
+  printErr(fmt::format("cut-back at step {} (t = {:.6g}): {}; new dt = {:.3g}\n", r.step, r.time,
+                       r.reason, r.newDt));
 }
 
 void Progress::finish() {
   if (liveLineOpen_) {
-    fmt::print("\n");
+    printOut("\n");
     liveLineOpen_ = false;
   }
 }

@@ -9,6 +9,13 @@
 
 namespace cc::app {
 
+// Writes `text` to standard output and flushes it. If standard output is gone (`covcontact run
+// DECK | head -1`, a pager quit early: EPIPE, SIGPIPE being ignored), says so once on stderr and
+// drops all later output instead of ending the run: the results file is what the run is for.
+void printOut(const std::string& text);
+// Writes `text` to standard error; a closed stderr is ignored (nothing else could report it).
+void printErr(const std::string& text);
+
 class Progress {
  public:
   Progress(int plannedSteps, bool quiet);

@@ -3,7 +3,6 @@
 
 #include <fmt/format.h>
 
-#include <filesystem>
 #include <stdexcept>
 
 #include "common/errors.hpp"
@@ -36,13 +35,6 @@ RestartRecord restartRecordOf(const Model& model, const Eigen::VectorXd& displac
   record.stepFraction = nextStepSize.fraction;
   record.easySteps = nextStepSize.easySteps;
   return record;
-}
-
-bool sameFile(const std::string& first, const std::string& second) {
-  std::error_code error;
-  if (std::filesystem::equivalent(first, second, error)) return true;
-  return std::filesystem::weakly_canonical(first, error) ==
-         std::filesystem::weakly_canonical(second, error);
 }
 
 }  // namespace cc::app

@@ -22,7 +22,4 @@ StartState restartFrom(const std::string& file, int fromStep, Model& model);
 RestartRecord restartRecordOf(const Model& model, const Eigen::VectorXd& displacement,
                               const StepSize& nextStepSize);
 
-// Whether two paths name the same file (a run must not overwrite the file it restarts from).
-bool sameFile(const std::string& first, const std::string& second);
-
 }  // namespace cc::app

@@ -16,6 +16,7 @@
 #include "deck/deck_parser.hpp"
 #include "model/model.hpp"
 #include "output/hdf5_io.hpp"
+#include "output/results_file_guard.hpp"
 #include "output/results_writer.hpp"
 #include "solver/load_stepper.hpp"
 #include "verification/reference_report.hpp"
@@ -133,21 +134,24 @@ int runCommand(const RunOptions& options) {
   std::string path;
   OutputSelection selection;
   StartState startState;
+  std::vector<std::string> inputs;  // files the results must never replace
   try {
     const ProblemSpec spec = parseDeck(options.deck);
     path = resultsPath(options.deck, spec.output.file, options.output);
     selection = outputSelection(spec.output);
-    checkOutputWritable(path, selection);
+    if (!options.restartFile.empty() && sameFile(path, options.restartFile)) {
+      std::cerr << "covcontact: error: the results file '" << path
+                << "' is the restart file; give another one with -o\n";
+      return kExitUsage;
+    }
+    inputs = spec.deckFiles;
+    inputs.push_back(spec.mesh.path);
+    if (!options.restartFile.empty()) inputs.push_back(options.restartFile);
+    checkOutputWritable(path, selection, inputs);
     model = buildModel(spec);
     references = std::make_unique<verification::ReferenceTracker>(*model);
-    if (!options.restartFile.empty()) {
-      if (sameFile(path, options.restartFile)) {
-        std::cerr << "covcontact: error: the results file '" << path
-                  << "' is the restart file; give another one with -o\n";
-        return kExitUsage;
-      }
+    if (!options.restartFile.empty())
       startState = restartFrom(options.restartFile, options.restartStep, *model);
-    }
   } catch (const InputError& error) {
     std::cerr << error.what() << "\n";
     return kExitInput;
@@ -157,21 +161,22 @@ int runCommand(const RunOptions& options) {
   }
   const ProblemSpec& spec = model->spec();
   if (!options.quiet) {
-    fmt::print("{}: {} nodes, {} elements, {} equations, {} contact points, {} threads\n",
-               spec.title.empty() ? options.deck : spec.title, model->mesh().numNodes(),
-               model->elementCount(), model->dofMap().numFree(), model->contactPointCount(),
-               model->threads());
+    printOut(fmt::format("{}: {} nodes, {} elements, {} equations, {} contact points, {} threads\n",
+                         spec.title.empty() ? options.deck : spec.title, model->mesh().numNodes(),
+                         model->elementCount(), model->dofMap().numFree(),
+                         model->contactPointCount(), model->threads()));
     if (!options.restartFile.empty()) {
-      fmt::print("continuing from step {} (t = {:.6g}) of {}\n", startState.step, startState.time,
-                 options.restartFile);
+      printOut(fmt::format("continuing from step {} (t = {:.6g}) of {}\n", startState.step,
+                           startState.time, options.restartFile));
     }
   }
 
   ResultsWriter writer;
   try {
-    writer.open(path,
-                {spec.deckText, options.commandLine, spec.title, COVCONTACT_VERSION, options.deck},
-                model->mesh(), selection);
+    writer.open(
+        path,
+        {spec.deckText, options.commandLine, spec.title, COVCONTACT_VERSION, options.deck, inputs},
+        model->mesh(), selection);
   } catch (const OutputError& error) {
     std::cerr << "covcontact: error: " << error.what() << "\n";
     return kExitIo;
@@ -207,14 +212,14 @@ int runCommand(const RunOptions& options) {
   writer.close({outcomeName(summary.outcome), summary.stepsConverged, summary.totalIterations,
                 summary.totalCutbacks, seconds, summary.message});
   if (summary.outcome == RunSummary::Outcome::Completed) {
-    fmt::print(
+    printOut(fmt::format(
         "completed: {} steps, {} Newton iterations, {} cut-backs in {:.2f} s; results in {}\n",
-        summary.stepsConverged, summary.totalIterations, summary.totalCutbacks, seconds, path);
+        summary.stepsConverged, summary.totalIterations, summary.totalCutbacks, seconds, path));
   }
   if (!references->empty()) {
     const verification::RunCost cost{seconds, summary.totalIterations, summary.stepsConverged};
     const auto errors = references->results();
-    fmt::print("{}", verification::formatReferenceErrors(errors, cost));
+    printOut(verification::formatReferenceErrors(errors, cost));
     try {
       verification::writeReferenceErrors(path, errors, cost);
     } catch (const OutputError& error) {

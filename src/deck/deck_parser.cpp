@@ -76,6 +76,7 @@ ProblemSpec parseDeckText(const std::string& text, const std::string& virtualPat
   state.cutback = CutbackSpec{};
   state.spec.deckPath = virtualPath;
   state.spec.deckText = source.text;
+  state.spec.deckFiles = source.files;
   for (const deck::LogicalLine& line : source.lines) dispatch(line, state);
   deck::validateDeck(state, virtualPath);
   return std::move(state.spec);

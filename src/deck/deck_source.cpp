@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -11,6 +12,7 @@
 
 #include "common/errors.hpp"
 #include "common/name_matching.hpp"
+#include "common/utf8.hpp"
 #include "deck/keyword_decl.hpp"
 #include "deck/parsed_line.hpp"
 
@@ -88,10 +90,16 @@ void IncludeExpander::include(const LogicalLine& line, const OpenFile& from) {
     for (std::size_t j = i; j < stack_.size(); ++j) cycle += stack_[j].displayPath + " -> ";
     throw InputError(path.where, fmt::format("include cycle: {}{}", cycle, target.displayPath));
   }
+  if (stack_.size() >= kMaxIncludeDepth) {
+    throw InputError(path.where,
+                     fmt::format("includes nested more than {} deep (from {}): flatten the chain",
+                                 kMaxIncludeDepth, stack_.front().displayPath));
+  }
   const std::string text = readDeckFile(
       target.displayPath, path.where,
       fmt::format("include file '{}' (looked for '{}')", path.text, target.identity.string()));
   if (appended_.insert(target.identity).second) {
+    out_.files.push_back(target.identity.string());
     out_.text += fmt::format("\n# ---- included file: {} ----\n", target.displayPath);
     out_.text += text;
   }
@@ -119,12 +127,25 @@ std::string readDeckFile(const std::string& path, const SourceLocation& requeste
   if (text.find('\0') != std::string::npos) {
     throw InputError(requestedAt, fmt::format("{} is not a text file", what));
   }
+  // Names from the deck end up in the XDMF file (XML) and the deck text in a UTF-8 attribute: a
+  // Latin-1 byte there makes them invalid, so it is refused where it stands.
+  if (const auto bad = firstInvalidUtf8(text)) {
+    const std::size_t lineStart =
+        text.rfind('\n', *bad) == std::string::npos ? 0 : text.rfind('\n', *bad) + 1;
+    const int line = 1 + static_cast<int>(std::count(text.begin(), text.begin() + *bad, '\n'));
+    const int column = 1 + static_cast<int>(*bad - lineStart);
+    throw InputError(SourceLocation{path, line, column},
+                     fmt::format("byte 0x{:02x} is not UTF-8 text (or is a control character); "
+                                 "save the file as UTF-8",
+                                 static_cast<unsigned char>(text[*bad])));
+  }
   return text;
 }
 
 DeckSource loadDeckSource(const std::string& text, const std::string& path) {
   DeckSource source;
   source.text = text;
+  source.files.push_back(identityOf(path).string());
   IncludeExpander expander(source);
   expander.expand(text, OpenFile{path, identityOf(path)});
   return source;

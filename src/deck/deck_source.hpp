@@ -12,7 +12,12 @@ namespace cc::deck {
 struct DeckSource {
   std::vector<LogicalLine> lines;  // include lines replaced by the included files' lines
   std::string text;  // the main text, then each included file once, after a "# ---" line
+  std::vector<std::string> files;  // the main deck and every included file, each once
 };
+
+// Deepest include nesting accepted: deeper chains are refused with a message instead of
+// exhausting the stack (the expansion recurses once per level).
+inline constexpr std::size_t kMaxIncludeDepth = 64;
 
 // Reads a whole file; throws InputError at `requestedAt` (naming `what`) if it cannot.
 std::string readDeckFile(const std::string& path, const SourceLocation& requestedAt,

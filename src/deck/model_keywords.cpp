@@ -56,6 +56,21 @@ void handleMesh(const ParsedLine& line, DeckState& state) {
   requireFirst(line, state.meshAt);
   const Value& path = line.positional(0);
   const fs::path resolved = resolveAgainstFile(path.text, line.where().file);
+  // What the path is, before its name is judged: a directory, device or FIFO was reported as
+  // "not found" (or as having no extension).
+  std::error_code error;
+  const fs::file_status status = fs::status(resolved, error);
+  if (fs::is_directory(status)) {
+    line.fail(path.where, fmt::format("mesh file '{}' is a directory (looked for '{}'); expected a "
+                                      "gmsh .msh or .geo file",
+                                      path.text, resolved.string()));
+  }
+  if (fs::exists(status) && !fs::is_regular_file(status)) {
+    line.fail(path.where, fmt::format("mesh file '{}' is not a regular file but a device, FIFO "
+                                      "or socket (looked for '{}'); expected a gmsh .msh or .geo "
+                                      "file",
+                                      path.text, resolved.string()));
+  }
   const std::string extension = toLower(resolved.extension().string());
   if (extension != ".msh" && extension != ".geo") {
     line.fail(path.where,
@@ -63,7 +78,6 @@ void handleMesh(const ParsedLine& line, DeckState& state) {
                           extension.empty() ? std::string("no extension")
                                             : "an unknown extension '" + extension + "'"));
   }
-  std::error_code error;
   if (!fs::is_regular_file(resolved, error)) {
     line.fail(path.where, fmt::format("mesh file '{}' not found (looked for '{}')", path.text,
                                       resolved.string()));

@@ -1,6 +1,7 @@
 // The solve block: `solve` ... `end`, sticky `newton`/`cutback` settings and `steps` phases.
 #include <fmt/format.h>
 
+#include <cmath>
 #include <stdexcept>
 
 #include "deck/deck_state.hpp"
@@ -8,6 +9,12 @@
 #include "deck/spec_choices.hpp"
 
 namespace cc::deck {
+
+namespace {
+// Steps are numbered with an int (results file, restart, records); the sum over all phases is
+// bounded well below its overflow, leaving room for the cut-back attempts counted beside it.
+constexpr long long kMaxTotalSteps = 1'000'000'000;
+}  // namespace
 
 namespace {
 
@@ -156,6 +163,31 @@ void handleSteps(const ParsedLine& line, DeckState& state) {
   applyNewtonParameters(line, phase.newton);
   applyCutbackParameters(line, phase.cutback);
   phase.where = line.where();
+  // Times and step numbers must stay meaningful: each step must move time, the phase must end at
+  // a finite time (dt=1e308 gave step times inf), and the steps of all phases are numbered with
+  // an int (two phases of 2^31-1 steps overflowed it).
+  double phaseStart = 0;
+  long long stepsBefore = 0;
+  for (const PhaseSpec& earlier : state.spec.phases) {
+    phaseStart += earlier.steps * earlier.dt;
+    stepsBefore += earlier.steps;
+  }
+  const double phaseEnd = phaseStart + phase.steps * phase.dt;
+  if (!std::isfinite(phaseEnd)) {
+    line.fail(line.where(), fmt::format("this phase would end at t = {:.6g} (from t = {:.6g}, {} "
+                                        "steps of dt = {:.6g}): times must stay finite",
+                                        phaseEnd, phaseStart, phase.steps, phase.dt));
+  }
+  if (phase.steps > 0 && !(phaseStart + phase.dt > phaseStart)) {
+    line.fail(line.where(), fmt::format("dt = {:.6g} does not move time at t = {:.17g} (it is "
+                                        "below the round-off of t): use a larger dt",
+                                        phase.dt, phaseStart));
+  }
+  if (stepsBefore + phase.steps > kMaxTotalSteps) {
+    line.fail(line.where(), fmt::format("the phases have {} steps in all; at most {} are "
+                                        "supported",
+                                        stepsBefore + phase.steps, kMaxTotalSteps));
+  }
   state.spec.phases.push_back(phase);
 }
 

@@ -12,12 +12,15 @@
 #include <atomic>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <mutex>
 #include <unordered_map>
 
 #include "common/errors.hpp"
+#include "common/utf8.hpp"
 #include "mesh/geo_parameters.hpp"
 #include "mesh/mesh_checks.hpp"
 
@@ -153,8 +156,19 @@ enum class MeshFileKind { Msh, Geo };
 MeshFileKind checkMeshFile(const MeshSpec& spec) {
   const std::filesystem::path path(spec.path);
   std::error_code error;
-  if (!std::filesystem::is_regular_file(path, error)) {
+  const std::filesystem::file_status status = std::filesystem::status(path, error);
+  if (!std::filesystem::exists(status)) {
     throw InputError(spec.where, fmt::format("mesh file '{}' does not exist", spec.path));
+  }
+  if (std::filesystem::is_directory(status)) {
+    throw InputError(spec.where, fmt::format("mesh file '{}' is a directory; expected a .geo or "
+                                             ".msh file",
+                                             spec.path));
+  }
+  if (!std::filesystem::is_regular_file(status)) {
+    throw InputError(spec.where, fmt::format("mesh file '{}' is not a regular file (a device, FIFO "
+                                             "or socket); expected a .geo or .msh file",
+                                             spec.path));
   }
   std::string extension = path.extension().string();
   std::transform(extension.begin(), extension.end(), extension.begin(),
@@ -225,6 +239,32 @@ GmshModel readGmshModel() {
   return model;
 }
 
+// gmsh's `Exit;` command (in the .geo or a file it includes) calls exit(0) from inside gmsh: the
+// run would end with status 0, no results and no message. While gmsh works this guard holds the
+// message to print instead, and an atexit handler turns such an exit into an input error.
+class ExitGuard {
+ public:
+  explicit ExitGuard(const std::string& text) {
+    static const bool registered = std::atexit(onExit) == 0;
+    (void)registered;
+    // A plain array: the handler runs during exit, after static strings may be destroyed.
+    const std::size_t length = std::min(text.size(), sizeof message_ - 1);
+    std::copy_n(text.data(), length, message_);
+    message_[length] = '\0';
+  }
+  ~ExitGuard() { message_[0] = '\0'; }
+  ExitGuard(const ExitGuard&) = delete;
+  ExitGuard& operator=(const ExitGuard&) = delete;
+
+ private:
+  static inline char message_[2048] = {};
+  static void onExit() {
+    if (message_[0] == '\0') return;
+    std::fputs(message_, stderr);
+    std::_Exit(kExitInput);
+  }
+};
+
 // Runs gmsh on the file and returns its physical groups and nodes. Any gmsh exception or
 // logged error becomes an InputError carrying gmsh's messages.
 GmshModel runGmsh(const MeshSpec& spec, MeshFileKind kind) {
@@ -234,6 +274,10 @@ GmshModel runGmsh(const MeshSpec& spec, MeshFileKind kind) {
   GmshModel model;
   bool threw = false;
   std::string exceptionText;
+  const ExitGuard exitGuard(fmt::format(
+      "{}: error: gmsh stopped the program while it read '{}': the .geo file (or a file it "
+      "includes) runs 'Exit;'; remove that command\n",
+      spec.where.str(), spec.path));
   try {
     gmsh::open(input.path());
     if (kind == MeshFileKind::Geo) gmsh::model::mesh::generate(3);
@@ -274,6 +318,13 @@ const char* geoPhysicalKeyword(int dim) {
 void checkGroupNames(const std::vector<PhysicalGroup>& groups, const SourceLocation& where) {
   std::map<std::string, const PhysicalGroup*> byName;
   for (const PhysicalGroup& group : groups) {
+    if (const auto bad = firstInvalidUtf8(group.name)) {
+      throw InputError(
+          where, fmt::format("the name of the physical {} with tag {}, \"{}\", is not "
+                             "UTF-8 text (byte {}): save the .geo as UTF-8 or use "
+                             "ASCII names",
+                             groupKind(group.dim), group.tag, escapedBytes(group.name), *bad + 1));
+    }
     if (group.name.empty()) {
       throw InputError(where,
                        fmt::format("the physical {} with tag {} has no name; name every "

@@ -243,6 +243,19 @@ std::unique_ptr<Model> buildModel(const ProblemSpec& spec) {
         blockSpec.group, elements, makeElementKernel(blockSpec), materials.at(blockSpec.material)));
   }
 
+  // A physical volume without an `elements` line would be left out of the model together with
+  // every load, support and contact on its nodes, without a word: refused (a volume meant to be
+  // left out is removed from the .geo's physical groups).
+  for (std::size_t block = 0; block < mesh.blocks.size(); ++block) {
+    if (usedBlocks.count(static_cast<int>(block))) continue;
+    throw InputError(spec.mesh.where,
+                     fmt::format("the mesh's physical volume '{}' ({} elements) has no 'elements' "
+                                 "line, so it and the loads and supports on it would be left out; "
+                                 "add e.g. 'elements {} hex8 material=NAME', or remove the "
+                                 "physical volume from the mesh",
+                                 mesh.blocks[block].name, mesh.blocks[block].connectivity.rows(),
+                                 mesh.blocks[block].name));
+  }
   model->boundaryConditions_.build(spec, mesh);
   for (const ContactSpec& c : spec.contacts) {
     model->contactPairs_.push_back(makePair(c, spec, mesh, active));

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <numbers>
 #include <string>
+#include <string_view>
 
 #include "common/errors.hpp"
 
@@ -35,6 +36,24 @@ std::string parserMessage(const mu::Parser::exception_type& error, const std::st
   return message;
 }
 
+// muParser's assignment operators (=, +=, -=, *=, /=) change a variable and return the value:
+// "t=5" would prescribe 5 at every time. A function has no business assigning, so any '=' that
+// is not part of a comparison (==, !=, <=, >=) is refused, at its character.
+void rejectAssignment(const std::string& expression, const SourceLocation& where) {
+  for (std::size_t i = 0; i < expression.size(); ++i) {
+    if (expression[i] != '=') continue;
+    if (i + 1 < expression.size() && expression[i + 1] == '=') {
+      ++i;  // ==
+      continue;
+    }
+    if (i > 0 && std::string_view("<>!").find(expression[i - 1]) != std::string_view::npos)
+      continue;
+    throw InputError(where, fmt::format("expression \"{}\" assigns with '=' at character {}; a "
+                                        "function of t cannot assign (compare with '==')",
+                                        expression, i + 1));
+  }
+}
+
 class ExpressionFunction final : public ScalarFunction {
  public:
   ExpressionFunction(const FunctionSpec& spec, FunctionVariables variables) : where_(spec.where) {
@@ -46,9 +65,18 @@ class ExpressionFunction final : public ScalarFunction {
       parser_.DefineVar("z", &position_[2]);
     }
     parser_.DefineConst("pi", std::numbers::pi);
+    rejectAssignment(spec.expression, where_);
     try {
       parser_.SetExpr(spec.expression);
       parser_.Eval();  // muParser parses lazily: force it now so errors point at the deck
+      // muParser's comma operator returns the last of several values: "-2,5e-3*t" (a decimal
+      // comma) would prescribe 5e-3*t. Commas belong only inside function arguments.
+      if (parser_.GetNumResults() > 1) {
+        throw InputError(where_,
+                         fmt::format("expression \"{}\" is {} comma-separated values; a function "
+                                     "gives one (write decimals with a point: 2.5e-3, not 2,5e-3)",
+                                     spec.expression, parser_.GetNumResults()));
+      }
     } catch (const mu::Parser::exception_type& error) {
       throw InputError(where_, fmt::format("cannot parse expression \"{}\": {}{}", spec.expression,
                                            parserMessage(error, spec.expression),

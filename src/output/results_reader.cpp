@@ -1,6 +1,9 @@
 // Reading results files: path lookups that tolerate missing components, typed reads, the tables.
 #include "output/results_reader.hpp"
 
+#include <filesystem>
+
+#include "output/results_file_guard.hpp"
 #include "output/results_layout.hpp"
 
 namespace cc {
@@ -24,12 +27,21 @@ std::vector<Row> readTable(h5::FileRef file, const char* name, hid_t rowType) {
 }  // namespace
 
 ResultsReader::ResultsReader(const std::string& path) : path_(path) {
+  // Not a regular file: say so before HDF5 tries (opening a FIFO would block).
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(path_, error))
+    throw OutputError("cannot read '" + path_ + "' as a results file: " + unreadableReason(path_));
   h5::QuietErrors quiet;
   h5::PropertyList access(h5::check(H5Pcreate(H5P_FILE_ACCESS), path_, "opening the file"));
   // Readers never modify the file, so they need no lock; this lets us read a run in progress.
   h5::checkStatus(H5Pset_file_locking(access.get(), false, true), path_, "opening the file");
-  file_ = h5::File(
-      h5::check(H5Fopen(path_.c_str(), H5F_ACC_RDONLY, access.get()), path_, "opening the file"));
+  file_ = h5::File(H5Fopen(path_.c_str(), H5F_ACC_RDONLY, access.get()));
+  if (!file_.valid()) {
+    // Say what the path is instead of HDF5's "unable to open file".
+    std::string why = unreadableReason(path_);
+    if (beingWritten(path_)) why += "; a run is writing it right now";
+    throw OutputError("cannot read '" + path_ + "' as a results file: " + why);
+  }
   if (!h5::hasAttribute(ref(), file_.get(), "format") ||
       h5::readStringAttribute(ref(), file_.get(), "format") != layout::kFormatName)
     throw OutputError("'" + path_ + "' is an HDF5 file but not a CovContact results file");

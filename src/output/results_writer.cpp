@@ -10,6 +10,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "common/utf8.hpp"
 #include "output/reactions_csv.hpp"
 #include "output/restart_io.hpp"
 #include "output/results_layout.hpp"
@@ -117,13 +118,32 @@ std::string csvPathFor(const std::string& h5Path) {
   return (path.parent_path() / (path.stem().string() + "_reactions.csv")).string();
 }
 
-void checkOutputWritable(const std::string& h5Path, const OutputSelection& selection) {
+void checkOutputWritable(const std::string& h5Path, const OutputSelection& selection,
+                         const std::vector<std::string>& inputs) {
   probeWritable(h5Path, "results file", false);
-  if (selection.xdmf) probeWritable(xdmfPathFor(h5Path), "XDMF file", true);
-  if (selection.csv) probeWritable(csvPathFor(h5Path), "CSV file", false);
+  checkReplaceable(h5Path, OutputKind::Results, inputs);
+  if (selection.xdmf) {
+    const std::string xdmf = xdmfPathFor(h5Path);
+    // `-o run.xdmf`: the sidecar would replace the results it describes.
+    if (sameFile(xdmf, h5Path))
+      throw OutputError("cannot write results file '" + h5Path +
+                        "': its XDMF sidecar would be the same file; name the results file "
+                        "*.h5");
+    // The XDMF file names the results file in XML, which must be UTF-8.
+    if (firstInvalidUtf8(fs::path(h5Path).filename().string()))
+      throw OutputError("cannot write results file '" + escapedBytes(h5Path) +
+                        "' with an XDMF sidecar: its name is not UTF-8 text; rename it");
+    probeWritable(xdmf, "XDMF file", true);
+    checkReplaceable(xdmf, OutputKind::Xdmf, inputs);
+  }
+  if (selection.csv) {
+    probeWritable(csvPathFor(h5Path), "CSV file", false);
+    checkReplaceable(csvPathFor(h5Path), OutputKind::Csv, inputs);
+  }
 }
 
 struct ResultsWriter::State {
+  ResultsFileLock lock;  // declared first: released after the file is closed
   std::string path;
   OutputSelection selection;
   long numNodes = 0;
@@ -160,15 +180,23 @@ const std::string& ResultsWriter::path() const {
 void ResultsWriter::open(const std::string& path, const RunInfo& info, const Mesh& mesh,
                          const OutputSelection& selection) {
   if (state_) throw std::logic_error("ResultsWriter::open: '" + state_->path + "' is still open");
-  checkOutputWritable(path, selection);
+  // Checked before the lock (which creates a missing file) and again once it is held: a second
+  // run on the same file stops at the lock, before anything is truncated, and the file to be
+  // replaced is checked while no other writer can change it.
+  checkOutputWritable(path, selection, info.inputFiles);
+  ResultsFileLock lock(path);
+  checkOutputWritable(path, selection, info.inputFiles);
   h5::QuietErrors quiet;
   auto state = std::make_unique<State>();
+  state->lock = std::move(lock);
   state->path = path;
   state->selection = selection;
   state->numNodes = mesh.numNodes();
   h5::PropertyList access(h5::check(H5Pcreate(H5P_FILE_ACCESS), path, "creating the file"));
   h5::checkStatus(H5Pset_libver_bounds(access.get(), kFormatLowBound, kFormatHighBound), path,
                   "choosing the file format");
+  // Our flock (above) excludes other writers; HDF5's own flock would conflict with it.
+  h5::checkStatus(H5Pset_file_locking(access.get(), false, true), path, "opening the file");
   state->file =
       h5::File(h5::check(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, access.get()), path,
                          "creating the file"));

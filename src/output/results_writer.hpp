@@ -9,6 +9,7 @@
 
 #include "mesh/mesh.hpp"
 #include "output/hdf5_io.hpp"
+#include "output/results_file_guard.hpp"
 #include "records/output_selection.hpp"
 #include "records/result_records.hpp"
 
@@ -21,6 +22,7 @@ struct RunInfo {
   std::string title;
   std::string version;
   std::string deckPath;
+  std::vector<std::string> inputFiles;  // never overwritten (checkOutputWritable)
 };
 
 // How the run ended; stored as attributes of /summary by close().
@@ -38,8 +40,12 @@ std::string xdmfPathFor(const std::string& h5Path);
 std::string csvPathFor(const std::string& h5Path);
 
 // Throws OutputError naming the path if the results file or a selected sidecar cannot be created
-// or overwritten. Cheap and side-effect free, so the app can call it before meshing and solving.
-void checkOutputWritable(const std::string& h5Path, const OutputSelection& selection = {});
+// or must not be overwritten: a sidecar that would be the results file itself (`-o run.xdmf`),
+// a path that is one of `inputs` (deck, included files, mesh, restart file), or an existing
+// file that CovContact did not write (checkReplaceable). Cheap and side-effect free, so the app
+// can call it before meshing and solving.
+void checkOutputWritable(const std::string& h5Path, const OutputSelection& selection = {},
+                         const std::vector<std::string>& inputs = {});
 
 class ResultsWriter {
  public:
@@ -48,7 +54,9 @@ class ResultsWriter {
   ResultsWriter(const ResultsWriter&) = delete;
   ResultsWriter& operator=(const ResultsWriter&) = delete;
 
-  // Creates (truncates) the files and writes the run info and the mesh. Throws OutputError.
+  // Takes the results file's lock (refusing a file another run is writing), checks it may be
+  // replaced, then creates (truncates) the files and writes the run info and the mesh. The lock
+  // is held until close(). Throws OutputError.
   void open(const std::string& path, const RunInfo& info, const Mesh& mesh,
             const OutputSelection& selection = {});
   // Writes /steps/<6-digit step>, flushes the file, then appends the step to the sidecars.

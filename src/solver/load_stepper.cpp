@@ -15,6 +15,10 @@ namespace {
 // absorbs the round-off of (t - T) / dt at a restart and of non-dyadic cut-back factors.
 constexpr double kPositionSnap = 1e-9;
 
+// The smallest step, in units of the phase's dt: a few times kPositionSnap, below which step
+// ends would be snapped back onto a step end already reached.
+constexpr double kMinStepFraction = 1e-8;
+
 double snapped(double position) {
   const double nearest = std::round(position);
   return std::abs(position - nearest) < kPositionSnap ? nearest : position;
@@ -196,9 +200,24 @@ bool LoadStepper::rejectStep(const PhaseSpec& phase, const NewtonResult& result,
                     step.time, dt, control.cutbacks, result.message);
     return false;
   }
+  // A step shorter than this (in units of the phase's dt) no longer moves time by more than the
+  // round-off the phase positions are snapped with: cutting further would retry the same state
+  // at the same time (down to dt = 0 with a large cut-back limit).
+  const double nextFraction = control.fraction * phase.cutback.factor;
+  const double nextDt = nextFraction * phase.dt;
+  if (nextFraction < kMinStepFraction || !(run.time + nextDt > run.time)) {
+    summary_.outcome = result.failure == FailureKind::SingularSystem
+                           ? RunSummary::Outcome::Singular
+                           : RunSummary::Outcome::Diverged;
+    summary_.message = fmt::format(
+        "step {} to t = {:.6g} (dt = {:.3g}) failed after {} cut-backs, and a further cut-back "
+        "to dt = {:.3g} would no longer move time (smallest step: {:g} of the phase's dt): {}",
+        step.step, step.time, dt, control.cutbacks, nextDt, kMinStepFraction, result.message);
+    return false;
+  }
   ++control.cutbacks;
   ++summary_.totalCutbacks;
-  control.fraction *= phase.cutback.factor;
+  control.fraction = nextFraction;
   observer_.cutback({step.step, step.time, control.fraction * phase.dt, result.message});
   return true;
 }

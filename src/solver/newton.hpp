@@ -11,7 +11,11 @@
 //  - Both: after solve k, the energy test and ||rhs_k|| <= residualTolerance ||rhs_1|| (both of
 //    iteration k) -> k iterations.
 //  - Round-off: a residual at round-off level of the forces (||rhs_k|| <= kRoundoffResidual *
-//    max(||f_int||, ||f_ext||)) cannot be reduced further, whatever the relative tests say.
+//    max(||f_int||, ||f_ext||)) cannot be reduced further, whatever the relative tests say. In a
+//    step that no load and no prescribed increment drives, the forces are themselves round-off;
+//    the scale then also includes max|K_ff,ii| max|x| (the force of a coordinate error eps|x|).
+//  - Norms are scale free: computed without underflow (E = 1e-300 gave ||rhs|| = 0 and the first
+//    iterate passed as converged), energies compared in units fixed by the first iteration.
 //    Residual and Either then converge at the start of iteration k >= 2 (k - 1 iterations);
 //    otherwise solve k is still done and logged, as FEAP would, and the step converges after
 //    it (k iterations). A step that starts in equilibrium therefore takes 1 iteration.
@@ -91,6 +95,9 @@ class Newton {
  private:
   void assembleAt(const Eigen::VectorXd& displacement, const NewtonStep& step, bool withTangent);
   Eigen::VectorXd freeResidual() const;  // R_f = f_int - f_ext on free dofs
+  // max |K_ff diagonal| * max |x|: the force that round-off of the coordinates (eps |x|) makes
+  // through the last assembled tangent, times 1/eps.
+  double stiffnessForceScale() const;
   double lineSearch(const NewtonStep& step, const Eigen::VectorXd& du, const Eigen::VectorXd& rhs,
                     Eigen::VectorXd& displacement);
   void addToFree(Eigen::VectorXd& displacement, const Eigen::VectorXd& du, double scale) const;

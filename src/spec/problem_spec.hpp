@@ -174,6 +174,7 @@ struct ProblemSpec {
   std::string title;
   std::string deckPath;  // as given on the command line
   std::string deckText;  // the main deck's text followed by every included file's text
+  std::vector<std::string> deckFiles;  // the deck and every file it includes (absolute paths)
   MeshSpec mesh;
   std::vector<MaterialSpec> materials;
   std::vector<ElementBlockSpec> elementBlocks;

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "output/hdf5_io.hpp"
+#include "output/results_file_guard.hpp"
 
 namespace cc::verification {
 
@@ -79,7 +80,13 @@ std::string formatReferenceErrors(const std::vector<ReferenceResult>& results,
 void writeReferenceErrors(const std::string& h5Path, const std::vector<ReferenceResult>& results,
                           const RunCost& cost) {
   h5::QuietErrors quiet;
-  const h5::File file(h5::check(H5Fopen(h5Path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT), h5Path,
+  // The writer's lock (not HDF5's, which would conflict with it): no other run may be writing.
+  const ResultsFileLock lock(h5Path);
+  const h5::PropertyList access(
+      h5::check(H5Pcreate(H5P_FILE_ACCESS), h5Path, "opening the file to add /verification"));
+  h5::checkStatus(H5Pset_file_locking(access.get(), false, true), h5Path,
+                  "opening the file to add /verification");
+  const h5::File file(h5::check(H5Fopen(h5Path.c_str(), H5F_ACC_RDWR, access.get()), h5Path,
                                 "opening the file to add /verification"));
   const h5::FileRef ref{file.get(), h5Path};
   const h5::Group group = h5::createGroup(ref, file.get(), "verification");

@@ -101,3 +101,44 @@ TEST(DeckIncludes, MissingDeckFile) {
 
 }  // namespace
 }  // namespace cc::test
+
+namespace cc::test {
+namespace {
+
+// Writes a chain main.deck -> 1.inc -> 2.inc -> ... -> depth.inc in a fresh directory.
+std::string writeIncludeChain(const std::string& name, int depth) {
+  const fs::path directory = fs::path(COVCONTACT_BINARY_DIR) / "tests" / "scratch" / name;
+  fs::remove_all(directory);
+  fs::create_directories(directory);
+  for (int level = 1; level <= depth; ++level) {
+    std::ofstream(directory / (std::to_string(level) + ".inc"))
+        << (level < depth ? "include \"" + std::to_string(level + 1) + ".inc\"\n"
+                          : "# the end of the chain\n");
+  }
+  const fs::path main = directory / "main.deck";
+  std::string deck = kMinimalDeck;
+  deck.replace(deck.find("meshes/"), 7,
+               std::string(COVCONTACT_SOURCE_DIR) + "/tests/decks/meshes/");
+  std::ofstream(main) << "include \"1.inc\"\n" << deck;
+  return main.string();
+}
+
+// The expansion recurses once per level: a chain thousands deep overflowed the stack (SIGSEGV).
+TEST(DeckIncludes, AnIncludeChainDeeperThanTheLimitIsRefusedWithAMessage) {
+  const std::string deep = writeIncludeChain("include_chain_deep", 5000);
+  try {
+    parseDeck(deep);
+    FAIL() << "a 5000-deep include chain was accepted";
+  } catch (const InputError& error) {
+    EXPECT_NE(error.bareMessage().find("includes nested more than 64 deep"), std::string::npos)
+        << error.what();
+    EXPECT_EQ(error.where().file, normal(fs::path(deep).parent_path() / "63.inc"));
+    EXPECT_EQ(error.where().line, 1);
+  }
+  // The main deck and 63 nested includes (64 open files) still parse.
+  const ProblemSpec spec = parseDeck(writeIncludeChain("include_chain_at_limit", 63));
+  EXPECT_EQ(spec.deckFiles.size(), 64u);
+}
+
+}  // namespace
+}  // namespace cc::test

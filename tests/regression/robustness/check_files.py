@@ -1,0 +1,243 @@
+#!/usr/bin/python3
+"""Results must never destroy anything (issue 15), checked on the real `covcontact` command.
+
+--case inputs: `run DECK -o X` refuses (exit 6, the file untouched byte for byte) when X is the
+  deck, a file it includes, the mesh, or an unrelated file CovContact did not write; `-o run.xdmf`
+  (the XDMF sidecar would replace the results) and a name that is not UTF-8 (the XDMF file would
+  not be well-formed) too; a sidecar that exists and was not written by
+  CovContact is not overwritten; a CovContact results file is replaced (exit 0).
+--case concurrent: while one run writes a results file, a second run on the same file stops
+  with exit 6 naming it, before truncating anything; `compare` of the file in progress reads its
+  finished steps (exit 0, MATCH of the file with itself, never an HDF5 error); the first run
+  ends with exit 0 and a complete file.
+--case sigpipe: `covcontact run DECK | head -1`: the run goes on after the pipe closes, says so
+  once on stderr and ends with exit 0 and a complete results file.
+--case unreadable: a restart or compare file that is a directory, a FIFO, empty, not HDF5 or a
+  truncated results file stops with exit 6 and says which of these it is (no blocking on the
+  FIFO); `--threads 0` and `--from-step 0` say what is allowed without a 300-digit number.
+
+Usage: check_files.py --covcontact BIN --source DIR --scratch DIR --case C
+"""
+import argparse
+import os
+import shutil
+import subprocess
+import sys
+import time
+
+import h5py
+
+COMMAND_TIMEOUT_S = 120
+EXIT_OK, EXIT_USAGE, EXIT_IO = 0, 1, 6
+CORE = os.path.join("input", "verification", "core")
+SHORT_DECK = "neohooke_bending.deck"  # 4 steps, includes neohooke_bending_model.inc
+SHORT_STEPS = 4
+LONG_DECK = "neohooke_bending_long.deck"  # 60 steps
+LONG_STEPS = 60
+
+
+def fail(message):
+    print("FAIL " + message)
+    sys.exit(1)
+
+
+def check(condition, message):
+    if not condition:
+        fail(message)
+
+
+def run(args, *arguments, cwd=None):
+    return subprocess.run([args.covcontact, *arguments], cwd=cwd or args.scratch,
+                          capture_output=True, text=True, timeout=COMMAND_TIMEOUT_S)
+
+
+def copy_core(args):
+    """The short deck, its include and its mesh, copied so that the test may try to clobber them."""
+    decks = os.path.join(args.scratch, "input", "verification", "core")
+    os.makedirs(decks)
+    for name in (SHORT_DECK, "neohooke_bending_model.inc", LONG_DECK):
+        shutil.copy(os.path.join(args.source, CORE, name), decks)
+    os.makedirs(os.path.join(args.scratch, "meshes"))
+    shutil.copy(os.path.join(args.source, "meshes", "cantilever.geo"),
+                os.path.join(args.scratch, "meshes"))
+    return decks
+
+
+def contents(path):
+    with open(path, "rb") as stream:
+        return stream.read()
+
+
+def refused(args, decks, output, fragment, what):
+    before = contents(output) if os.path.exists(output) else None
+    result = run(args, "run", "-q", SHORT_DECK, "-o", output, "--threads", "1", cwd=decks)
+    check(result.returncode == EXIT_IO,
+          f"{what}: exit {result.returncode}, expected {EXIT_IO}\n{result.stderr}")
+    check(fragment in result.stderr, f"{what}: stderr lacks {fragment!r}:\n{result.stderr}")
+    if before is not None:
+        check(contents(output) == before, f"{what}: '{output}' was modified")
+    print(f"{what}: exit {EXIT_IO}, {result.stderr.strip().splitlines()[-1]}")
+
+
+def inputs_case(args):
+    decks = copy_core(args)
+    mesh = os.path.join(args.scratch, "meshes", "cantilever.geo")
+    refused(args, decks, SHORT_DECK, "an input of this run", "-o the deck")
+    refused(args, decks, "neohooke_bending_model.inc", "an input of this run", "-o an include")
+    refused(args, decks, mesh, "an input of this run", "-o the mesh")
+    unrelated = os.path.join(decks, "notes.txt")
+    with open(unrelated, "w") as stream:
+        stream.write("not results\n")
+    refused(args, decks, unrelated, "was not written by CovContact",
+            "-o an unrelated file")
+    refused(args, decks, "run.xdmf", "its XDMF sidecar would be the same file", "-o run.xdmf")
+    # A Latin-1 results name would be written into the XDMF file (XML, UTF-8).
+    refused(args, decks, os.fsdecode(b"caf\xe9.h5"), "its name is not UTF-8 text",
+            "-o a Latin-1 name")
+    check(not os.path.exists(os.path.join(decks, "run.xdmf")), "-o run.xdmf created run.xdmf")
+    foreign_xdmf = os.path.join(decks, "mine.xdmf")
+    with open(foreign_xdmf, "w") as stream:
+        stream.write("my own notes\n")
+    refused(args, decks, "mine.h5", "XDMF file 'mine.xdmf': it exists and was not written",
+            "an existing foreign XDMF sidecar")
+    check(not os.path.exists(os.path.join(decks, "mine.h5")),
+          "the refused run left a results file")
+
+    results = os.path.join(decks, "results.h5")
+    for attempt in ("creates", "replaces"):
+        result = run(args, "run", "-q", SHORT_DECK, "-o", results, "--threads", "1", cwd=decks)
+        check(result.returncode == EXIT_OK,
+              f"a run that {attempt} a results file: exit {result.returncode}\n{result.stderr}")
+    with h5py.File(results, "r") as h5:
+        check(len(h5["steps"]) == SHORT_STEPS and h5["summary"].attrs["outcome"] == "completed",
+              "the replaced results file is not complete")
+    print("a CovContact results file is replaced: exit 0, complete")
+
+
+def wait_for_steps(path, steps, process):
+    """Waits until the results file in progress holds `steps` step groups (read with h5py)."""
+    deadline = time.time() + COMMAND_TIMEOUT_S
+    while time.time() < deadline:
+        check(process.poll() is None, "the first run ended before the test could start")
+        try:
+            with h5py.File(path, "r", locking=False) as h5:
+                if "steps" in h5 and len(h5["steps"]) >= steps:
+                    return
+        except (OSError, KeyError):
+            pass  # between two flushes, or not created yet
+        time.sleep(0.1)
+    fail(f"no {steps} steps in {path} within {COMMAND_TIMEOUT_S} s")
+
+
+def concurrent_case(args):
+    decks = copy_core(args)
+    results = os.path.join(args.scratch, "shared.h5")
+    first = subprocess.Popen([args.covcontact, "run", "-q", os.path.join(decks, LONG_DECK),
+                              "-o", results, "--threads", "1"],
+                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        wait_for_steps(results, 2, first)
+        second = run(args, "run", "-q", os.path.join(decks, SHORT_DECK), "-o", results,
+                     "--threads", "1")
+        check(second.returncode == EXIT_IO and "is being written by another process" in
+              second.stderr and "shared.h5" in second.stderr,
+              f"second writer: exit {second.returncode}\n{second.stderr}")
+        print(f"second writer refused: {second.stderr.strip()}")
+        compared = 0
+        while first.poll() is None and compared < 20:
+            result = run(args, "compare", results, results)
+            check(result.returncode == EXIT_OK and "MATCH:" in result.stdout,
+                  f"compare of the file in progress: exit {result.returncode}\n"
+                  f"{result.stdout}{result.stderr}")
+            compared += 1
+        check(compared > 0, "the run ended before compare could read it in progress")
+        print(f"compare of the file in progress: {compared} times exit 0")
+        stdout, stderr = first.communicate(timeout=COMMAND_TIMEOUT_S)
+    finally:
+        if first.poll() is None:
+            first.kill()
+    check(first.returncode == EXIT_OK, f"first run: exit {first.returncode}\n{stderr}")
+    with h5py.File(results, "r") as h5:
+        check(len(h5["steps"]) == LONG_STEPS and h5["summary"].attrs["outcome"] == "completed",
+              "the first run's file is not complete")
+    print(f"the first run completed its file: {LONG_STEPS} steps")
+
+
+def sigpipe_case(args):
+    decks = copy_core(args)
+    results = os.path.join(args.scratch, "piped.h5")
+    # `| head -1`: the reader closes the pipe after the first line.
+    run_process = subprocess.Popen([args.covcontact, "run", os.path.join(decks, SHORT_DECK),
+                                    "-o", results, "--threads", "1"],
+                                   stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    first_line = run_process.stdout.readline()
+    run_process.stdout.close()
+    stderr = run_process.stderr.read().decode()
+    run_process.wait(timeout=COMMAND_TIMEOUT_S)
+    check(first_line, "no first line of progress")
+    check(run_process.returncode == EXIT_OK,
+          f"run with a closed stdout: exit {run_process.returncode}\n{stderr}")
+    check("standard output is closed" in stderr,
+          f"no note that standard output closed:\n{stderr}")
+    with h5py.File(results, "r") as h5:
+        check(len(h5["steps"]) == SHORT_STEPS and h5["summary"].attrs["outcome"] == "completed",
+              "the results of the run with a closed stdout are not complete")
+    print(f"stdout closed after one line: exit 0, {SHORT_STEPS} steps, note on stderr")
+
+
+def unreadable_case(args):
+    decks = copy_core(args)
+    good = os.path.join(args.scratch, "good.h5")
+    result = run(args, "run", "-q", os.path.join(decks, SHORT_DECK), "-o", good, "--threads", "1")
+    check(result.returncode == EXIT_OK, f"reference run: exit {result.returncode}")
+    directory = os.path.join(args.scratch, "a_directory")
+    os.makedirs(directory)
+    fifo = os.path.join(args.scratch, "a_fifo")
+    os.mkfifo(fifo)
+    empty = os.path.join(args.scratch, "empty.h5")
+    open(empty, "w").close()
+    truncated = os.path.join(args.scratch, "truncated.h5")
+    with open(truncated, "wb") as stream:
+        stream.write(contents(good)[:len(contents(good)) // 2])
+    cases = [(directory, "is a directory"), (fifo, "not a regular file"),
+             (empty, "is empty"), (os.path.join(decks, SHORT_DECK), "not an HDF5 file"),
+             (truncated, "truncated or damaged")]
+    for path, fragment in cases:
+        for command in (["compare", path, good],
+                        ["run", "-q", os.path.join(decks, SHORT_DECK), "-o",
+                         os.path.join(args.scratch, "continued.h5"), "--restart", path]):
+            result = run(args, *command)
+            expected = EXIT_USAGE if command[0] == "run" and path == directory else EXIT_IO
+            check(result.returncode == expected,
+                  f"{' '.join(command)}: exit {result.returncode}, expected {expected}\n"
+                  f"{result.stderr}")
+            if expected == EXIT_IO:
+                check(fragment in result.stderr,
+                      f"{' '.join(command)}: stderr lacks {fragment!r}:\n{result.stderr}")
+            print(f"{command[0]} {os.path.basename(path)}: exit {expected}, "
+                  f"{result.stderr.strip().splitlines()[-1]}")
+    for option, extra in (("--threads", []), ("--from-step", ["--restart", good])):
+        result = run(args, "run", os.path.join(decks, SHORT_DECK), "-o",
+                     os.path.join(args.scratch, "x.h5"), option, "0", *extra)
+        check(result.returncode == EXIT_USAGE, f"{option} 0: exit {result.returncode}")
+        check("whole number from 1 to 2147483647, got '0'" in result.stderr and
+              len(result.stderr) < 400, f"{option} 0: unhelpful message:\n{result.stderr}")
+        print(f"{option} 0: exit 1, {result.stderr.strip().splitlines()[0]}")
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__)
+    parser.add_argument("--covcontact", required=True)
+    parser.add_argument("--source", required=True, help="the source directory")
+    parser.add_argument("--scratch", required=True, help="working directory (emptied first)")
+    parser.add_argument("--case", required=True,
+                        choices=["inputs", "concurrent", "sigpipe", "unreadable"])
+    args = parser.parse_args()
+    shutil.rmtree(args.scratch, ignore_errors=True)
+    os.makedirs(args.scratch)
+    {"inputs": inputs_case, "concurrent": concurrent_case, "sigpipe": sigpipe_case,
+     "unreadable": unreadable_case}[args.case](args)
+
+
+if __name__ == "__main__":
+    main()
