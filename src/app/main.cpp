@@ -1,10 +1,16 @@
 // The `covcontact` command: parses the command line (CLI11) and dispatches to run, check and
 // compare. Exit codes are listed in --help and in common/errors.hpp.
+#include <malloc.h>
+#include <unistd.h>
+
 #include <CLI/CLI.hpp>
+#include <cstdio>
+#include <cstdlib>
 #include <iostream>
 
 #include "app/commands.hpp"
 #include "common/errors.hpp"
+#include "solver/petsc_loader.hpp"
 
 namespace {
 
@@ -23,6 +29,34 @@ std::string joinArguments(int argc, char** argv) {
   std::string line;
   for (int i = 0; i < argc; ++i) line += (i ? " " : "") + std::string(argv[i]);
   return line;
+}
+
+// Idle OpenMP threads must sleep, not spin, on a shared machine: with the default policy an
+// idle libgomp thread spins for ~300 000 iterations after each parallel region, which on a
+// machine whose other core is busy took a third of the samples (issue 13). libgomp reads
+// OMP_WAIT_POLICY once, when it is loaded (before main), so a process that did not get it from
+// its environment re-executes itself once with OMP_WAIT_POLICY=passive (a user's setting is
+// kept). With --threads 1 no OpenMP thread is ever started, and nothing is re-executed.
+void waitPassivelyWhenIdle(char** argv) {
+  if (std::getenv("OMP_WAIT_POLICY") != nullptr) return;
+  if (setenv("OMP_WAIT_POLICY", "passive", 1) != 0) return;
+  execv("/proc/self/exe", argv);
+  // exec failed (no /proc): go on with the default policy
+}
+
+// UMFPACK allocates its numeric workspace (several MiB at 4 k equations) at every
+// factorization and frees it afterwards. With glibc's defaults such blocks are mmap-ed and
+// returned to the kernel each time, so every factorization page-faults and clears them anew:
+// on example 6.1 (40 x 10 block, 4 k equations, one thread) that was ~40% of the CPU time
+// (perf: page faults 19%, memset 9%, umfdl_mem_alloc_tail_block 10%). Serving blocks up to
+// 32 MiB (glibc's largest mmap threshold) from the heap and keeping up to 1 GiB of freed heap
+// lets the next factorization reuse the same pages: task-clock 3.28 -> 1.63 s, page faults
+// 87 928 -> 6 350 for 11 steps (docs/performance/solvers.md). Larger factors stay mmap-ed;
+// their cost is arithmetic, not allocation.
+void reuseFreedMemory() {
+  mallopt(M_MMAP_THRESHOLD, 32 << 20);
+  mallopt(M_TRIM_THRESHOLD, 1 << 30);
+  mallopt(M_TOP_PAD, 64 << 20);
 }
 
 }  // namespace
@@ -49,6 +83,26 @@ int main(int argc, char** argv) {
                        "Continue from a converged step stored in this results file (the "
                        "deck and mesh must be those of the run that wrote it)")
           ->check(CLI::ExistingFile);
+  runCommand
+      ->add_option("--dump-tangent", run.dumpTangent,
+                   "Write the Newton system of step STEP, iteration ITER (STEP:ITER) in "
+                   "PETSc binary format, with its rigid-body modes (solver/tangent_dump.hpp); "
+                   "repeatable")
+      ->check(CLI::Validator(
+          [](std::string& value) -> std::string {
+            int step = 0, iteration = 0;
+            char colon = 0, extra = 0;
+            if (std::sscanf(value.c_str(), "%d%c%d%c", &step, &colon, &iteration, &extra) != 3 ||
+                colon != ':' || step < 1 || iteration < 1) {
+              return "expected STEP:ITER with both >= 1, got '" + value + "'";
+            }
+            return {};
+          },
+          "STEP:ITER"));
+  runCommand->add_option(
+      "--dump-dir", run.dumpDirectory,
+      "Directory in which --dump-tangent writes <results stem>_tangent_STEP_ITER "
+      "(default: the results file's)");
   runCommand
       ->add_option("--from-step", run.restartStep,
                    "Step of the --restart file to continue from (default: its last step)")
@@ -77,6 +131,22 @@ int main(int argc, char** argv) {
                    "contact/*/total_force)")
       ->delimiter(',');
 
+  cc::app::SolveDumpOptions solveDump;
+  auto* solveDumpCommand =
+      cli.add_subcommand("solve-dump",
+                         "Solve a system written by run --dump-tangent with one linear solver and "
+                         "print what it cost (one JSON line; scripts/solver_survey.py)");
+  solveDumpCommand->add_option("directory", solveDump.directory, "Dump directory")
+      ->required()
+      ->check(CLI::ExistingDirectory);
+  solveDumpCommand
+      ->add_option("--solver", solveDump.solver,
+                   "auto, cholmod, umfpack, mumps, superlu_dist, amg or gamg")
+      ->capture_default_str();
+  solveDumpCommand
+      ->add_option("--rtol", solveDump.rtol, "Relative residual for the iterative solvers")
+      ->capture_default_str();
+
   try {
     cli.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
@@ -84,11 +154,18 @@ int main(int argc, char** argv) {
     return code == 0 ? cc::kExitOk : cc::kExitUsage;
   }
 
+  if (*runCommand && run.threads != 1) waitPassivelyWhenIdle(argv);
+  reuseFreedMemory();
   try {
+    // PETSc (and MPI) are started by the first PETSc solver only; finalized once here.
+    struct PetscFinalizer {
+      ~PetscFinalizer() { cc::petsc::finalize(); }
+    } petscFinalizer;
     if (*runCommand) {
       run.commandLine = joinArguments(argc, argv);
       return cc::app::runCommand(run);
     }
+    if (*solveDumpCommand) return cc::app::solveDumpCommand(solveDump);
     if (*checkCommand) {
       if (checkDeck.empty() && !listKeywords) {
         std::cerr << "covcontact check: give a deck (or --keywords)\n";

@@ -4,10 +4,12 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
 #include "solver/rigid_body_modes.hpp"
+#include "solver/tangent_dump.hpp"
 
 namespace cc {
 
@@ -60,8 +62,15 @@ bool convergedAfterSolve(const NewtonSpec& spec, const Norms& norms, int iterati
 
 }  // namespace
 
-Newton::Newton(NonlinearProblem& problem, StepObserver& observer, Clock::time_point runStart)
-    : problem_(problem), observer_(observer), runStart_(runStart) {}
+Newton::Newton(NonlinearProblem& problem, StepObserver& observer, Clock::time_point runStart,
+               LinearSolverSpec::Method linearSolver, std::vector<TangentDumpRequest> dumps)
+    : problem_(problem),
+      observer_(observer),
+      runStart_(runStart),
+      linear_(linearSolver),
+      dumps_(std::move(dumps)) {
+  linear_.setNotifier([this](const std::string& line) { observer_.note(line); });
+}
 
 void Newton::assembleAt(const Eigen::VectorXd& displacement, const NewtonStep& step,
                         bool withTangent) {
@@ -141,6 +150,7 @@ NewtonResult Newton::solve(const NewtonStep& step, const NewtonSpec& spec,
   };
   linear_.beginStep();
   Norms norms;
+  double previousResidual = 0, forcing = kForcingMax;
   for (int iteration = 1; iteration <= spec.maxIterations; ++iteration) {
     Eigen::VectorXd rhs;
     try {
@@ -170,7 +180,23 @@ NewtonResult Newton::solve(const NewtonStep& step, const NewtonSpec& spec,
     }
     Eigen::VectorXd du;
     try {
+      for (const TangentDumpRequest& dump : dumps_) {
+        if (dump.step != step.step || dump.iteration != iteration || step.attempt != 0) continue;
+        writeTangentDump(dump.directory, tangent_, rhs, dofs, current_);
+        observer_.note(fmt::format("tangent of step {} iteration {} written to {}", step.step,
+                                   iteration, dump.directory));
+      }
+      linear_.setLayout({dofs.freeDofs(), current_});
       linear_.factorize(tangent_);
+      if (linear_.iterative()) {
+        if (iteration > 1) {
+          const double ratio = norms.residual / previousResidual;
+          forcing =
+              std::min({kForcingMax, kForcingGamma * ratio * ratio, norms.relativeResidual()});
+          forcing = std::max(forcing, kForcingMin);
+        }
+        linear_.setForcing(forcing);
+      }
       du = linear_.solve(rhs);
     } catch (const StepFailure& failure) {
       if (failure.kind() != FailureKind::SingularSystem) {
@@ -181,6 +207,7 @@ NewtonResult Newton::solve(const NewtonStep& step, const NewtonSpec& spec,
                     describeSingularStiffness(tangent_.free, dofs, current_, problem_.bodies()) +
                         " (" + failure.what() + ")");
     }
+    previousResidual = norms.residual;
     norms.energy = std::abs(du.dot(rhs));
     if (iteration == 1) norms.firstEnergy = norms.energy;
     if (iteration == 1) applyPrescribed();
