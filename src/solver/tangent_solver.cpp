@@ -158,16 +158,16 @@ Eigen::VectorXd TangentSolver::solve(const Eigen::VectorXd& rhs) {
   if (active_->iterative()) {
     active_->setRelativeTolerance(forcing_);
     if (iterationLimit_ > 0) active_->setIterationLimit(iterationLimit_);
-    try {
-      solution = active_->solve(rhs);
-    } catch (const KrylovFailure& failure) {
-      ++krylovFallbacks_;
-      if (notify_)
-        notify_(fmt::format("{}; solving this iteration with CHOLMOD/UMFPACK", failure.what()));
-      factorizeDirect(*system_);
-      solution = active_->solve(rhs);
+  }
+  try {
+    solution = active_->solve(rhs);
+  } catch (const KrylovFailure& failure) {
+    // A Krylov solve that stalled, or a PETSc direct solve that missed: CHOLMOD/UMFPACK.
+    ++krylovFallbacks_;
+    if (notify_) {
+      notify_(fmt::format("{}; solving this iteration with CHOLMOD/UMFPACK", failure.what()));
     }
-  } else {
+    factorizeDirect(*system_);
     solution = active_->solve(rhs);
   }
   if (!solution.allFinite()) {
