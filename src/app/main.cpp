@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
+#include <string>
 
 #include "app/commands.hpp"
 #include "common/errors.hpp"
@@ -31,17 +32,26 @@ std::string joinArguments(int argc, char** argv) {
   return line;
 }
 
-// Idle OpenMP threads must sleep, not spin, on a shared machine: with the default policy an
-// idle libgomp thread spins for ~300 000 iterations after each parallel region, which on a
-// machine whose other core is busy took a third of the samples (issue 13). libgomp reads
-// OMP_WAIT_POLICY once, when it is loaded (before main), so a process that did not get it from
-// its environment re-executes itself once with OMP_WAIT_POLICY=passive (a user's setting is
-// kept). With --threads 1 no OpenMP thread is ever started, and nothing is re-executed.
-void waitPassivelyWhenIdle(char** argv) {
-  if (std::getenv("OMP_WAIT_POLICY") != nullptr) return;
-  if (setenv("OMP_WAIT_POLICY", "passive", 1) != 0) return;
-  execv("/proc/self/exe", argv);
-  // exec failed (no /proc): go on with the default policy
+// OpenMP settings that libgomp reads only from the environment, once, when it is loaded (before
+// main), so a process that did not get them re-executes itself once with them set (a user's
+// own setting is kept):
+//  - OMP_WAIT_POLICY=passive: idle OpenMP threads sleep instead of spinning ~300 000 times
+//    after each parallel region; on a machine whose other core is busy that spinning took a
+//    third of the samples (issue 13).
+//  - OMP_THREAD_LIMIT=N for --threads N: CHOLMOD's supernodal factorization asks for 4 threads
+//    whatever omp_set_num_threads says (CHOLMOD_OMP_NUM_THREADS is compiled into SuiteSparse
+//    5), so `--threads 1` ran 4 threads; the thread limit caps that too.
+// The re-execution costs one more program start (dynamic linking, ~0.1 s CPU).
+void applyOpenMpEnvironment(char** argv, int threads) {
+  bool changed = false;
+  if (std::getenv("OMP_WAIT_POLICY") == nullptr) {
+    changed |= setenv("OMP_WAIT_POLICY", "passive", 1) == 0;
+  }
+  if (threads > 0 && std::getenv("OMP_THREAD_LIMIT") == nullptr) {
+    changed |= setenv("OMP_THREAD_LIMIT", std::to_string(threads).c_str(), 1) == 0;
+  }
+  if (changed) execv("/proc/self/exe", argv);
+  // exec failed (no /proc): go on with the defaults
 }
 
 // UMFPACK allocates its numeric workspace (several MiB at 4 k equations) at every
@@ -154,7 +164,7 @@ int main(int argc, char** argv) {
     return code == 0 ? cc::kExitOk : cc::kExitUsage;
   }
 
-  if (*runCommand && run.threads != 1) waitPassivelyWhenIdle(argv);
+  if (*runCommand) applyOpenMpEnvironment(argv, run.threads);
   reuseFreedMemory();
   try {
     // PETSc (and MPI) are started by the first PETSc solver only; finalized once here.
