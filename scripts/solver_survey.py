@@ -38,14 +38,15 @@ def load_average():
     return os.getloadavg()[0]
 
 
-def make_dumps(size, work, timeout):
-    """Runs scaling_<size>.deck until the stick and slip tangents are written."""
+def make_dumps(size, work, timeout, reuse=False):
+    """Runs scaling_<size>.deck until the stick and slip tangents are written (reuse: take the
+    dumps that exist, run nothing)."""
     deck = DECKS / f"scaling_{size}.deck"
     results = work / f"scaling_{size}.h5"
     wanted = {state: work / f"scaling_{size}_tangent_{it.replace(':', '_')}"
               for state, it in STATES.items()}
-    if all((d / "info.txt").exists() for d in wanted.values()):
-        return wanted
+    if reuse or all((d / "info.txt").exists() for d in wanted.values()):
+        return {s: d for s, d in wanted.items() if (d / "info.txt").exists()}
     args = [str(COVCONTACT), "run", str(deck), "-q", "--threads", "1", "-o", str(results)]
     for it in STATES.values():
         args += ["--dump-tangent", it]
@@ -98,21 +99,31 @@ def solve_measured(dump, solver, rtol, timeout):
         return {"solver": solver, "error": out.stderr[-300:]}
 
 
+def cpu_total(r):
+    """CPU seconds of analysis + factorization/setup + solve (wall seconds for records that
+    predate the CPU columns)."""
+    if "cpu_factorize_s" in r:
+        return r["cpu_factorize_s"] + r["cpu_solve_s"]
+    return r["analysis_s"] + r["factor_s"] + r["solve_s"]
+
+
 def report(records):
-    lines = ["| equations | state | symmetric | solver | backend | analysis s | factor/setup s | "
-             "solve s | total s | Krylov it. | rel. residual | peak RSS MiB | load |",
-             "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    lines = ["| equations | state | solver | backend | CPU factor/setup s | CPU solve s | "
+             "CPU total s | wall total s | Krylov it. | rel. residual | peak RSS MiB | load |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in sorted(records, key=lambda r: (r.get("equations", 0), r.get("state", ""),
                                              SOLVERS.index(r["solver"]))):
         if r.get("error"):
-            lines.append(f"| {r.get('equations', '')} | {r.get('state', '')} | | {r['solver']} | "
+            lines.append(f"| {r.get('equations', '')} | {r.get('state', '')} | {r['solver']} | "
                          f"failed: {r['error'][:60]} | | | | | | | | |")
             continue
+        cpu = (f"{r['cpu_factorize_s']:.2f} | {r['cpu_solve_s']:.2f}" if "cpu_factorize_s" in r
+               else "| ")
         lines.append(
-            f"| {r['equations']} | {r['state']} | {'yes' if r['symmetric'] else 'no'} | "
-            f"{r['solver']} | {r['backend']}{' (fallback)' if r['fallback'] else ''} | "
-            f"{r['analysis_s']:.2f} | {r['factor_s']:.2f} | {r['solve_s']:.2f} | "
-            f"{r['total_s']:.2f} | {r['krylov_iterations']} | {r['relative_residual']:.1e} | "
+            f"| {r['equations']} | {r['state']} | {r['solver']} | "
+            f"{r['backend']}{' (fallback)' if r['fallback'] else ''} | {cpu} | "
+            f"{cpu_total(r):.2f} | {r['analysis_s'] + r['factor_s'] + r['solve_s']:.2f} | "
+            f"{r['krylov_iterations']} | {r['relative_residual']:.1e} | "
             f"{r['children_peak_rss_mib']:.0f} | {r['load_average']:.1f} |")
     return "\n".join(lines)
 
@@ -126,7 +137,7 @@ def plot(records, path):
     slopes = {}
     for solver in SOLVERS:
         for state, marker in (("stick", "o"), ("slip", "s")):
-            pts = sorted((r["equations"], r["total_s"]) for r in records
+            pts = sorted((r["equations"], cpu_total(r)) for r in records
                          if r["solver"] == solver and r.get("state") == state and not r.get("error"))
             if not pts:
                 continue
@@ -138,7 +149,7 @@ def plot(records, path):
                 label += f" (slope {slope:.2f})"
             ax.loglog(n, t, marker=marker, label=label)
     ax.set_xlabel("equations")
-    ax.set_ylabel("analysis + factorization/setup + solve, s (one thread)")
+    ax.set_ylabel("CPU s: analysis + factorization/setup + solve (one thread)")
     ax.set_title("One Newton system, dumped tangents of example 6.1 scaled")
     ax.legend(fontsize=7)
     ax.grid(True, which="both", alpha=0.3)
@@ -156,6 +167,8 @@ def main():
     parser.add_argument("--work", default="/tmp/covcontact_solver_survey")
     parser.add_argument("--timeout", type=float, default=900)
     parser.add_argument("--report", action="store_true", help="only redraw from solvers.json")
+    parser.add_argument("--reuse-dumps", action="store_true",
+                        help="solve the dumps that exist, run no deck")
     args = parser.parse_args()
     raw = OUT / "solvers.json"
     records = json.loads(raw.read_text()) if raw.exists() else []
@@ -163,7 +176,7 @@ def main():
         work = Path(args.work)
         work.mkdir(parents=True, exist_ok=True)
         for size in args.sizes.split(","):
-            dumps = make_dumps(size, work, args.timeout)
+            dumps = make_dumps(size, work, args.timeout, args.reuse_dumps)
             for state, dump in dumps.items():
                 for solver in args.solvers.split(","):
                     record = solve_measured(dump, solver, args.rtol, args.timeout)
