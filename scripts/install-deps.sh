@@ -5,7 +5,10 @@ set -euo pipefail
 
 packages=(
   build-essential cmake ninja-build pkg-config git
-  libeigen3-dev libsuitesparse-dev libhdf5-dev libgmsh-dev gmsh
+  libeigen3-dev libsuitesparse-dev libgmsh-dev gmsh
+  # PETSc with MUMPS, hypre, SuperLU_dist (issue 13); it links the Open MPI HDF5, which the
+  # results writer therefore uses as well (one HDF5 library per process)
+  libpetsc-real3.18-dev libhdf5-openmpi-dev
   libmuparser-dev libcli11-dev libfmt-dev libgtest-dev libgmock-dev
   libopenblas0-serial
   python3-h5py python3-matplotlib python3-numpy python3-scipy

@@ -14,9 +14,18 @@ struct RunOptions {
   int threads = 0;     // 0 = OpenMP default
   std::string commandLine;
   bool quiet = false;
-  std::string restartFile;  // --restart: continue from a step of this results file
-  int restartStep = -1;     // --from-step; -1 = the last step with restart data
+  std::string restartFile;               // --restart: continue from a step of this results file
+  int restartStep = -1;                  // --from-step; -1 = the last step with restart data
+  std::vector<std::string> dumpTangent;  // --dump-tangent STEP:ITER (repeatable)
+  std::string dumpDirectory;             // --dump-dir; empty = beside the results file
 };
+
+struct SolveDumpOptions {
+  std::string directory;
+  std::string solver = "auto";
+  double rtol = 1e-8;
+};
+int solveDumpCommand(const SolveDumpOptions& options);
 
 struct CompareOptionsCli {
   std::string run;

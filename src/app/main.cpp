@@ -1,14 +1,20 @@
 // The `covcontact` command: parses the command line (CLI11) and dispatches to run, check and
 // compare. Exit codes are listed in --help and in common/errors.hpp.
 #include <fmt/format.h>
+#include <malloc.h>
+#include <unistd.h>
 
 #include <CLI/CLI.hpp>
 #include <csignal>
+#include <cstdio>
+#include <cstdlib>
 #include <iostream>
 #include <limits>
+#include <string>
 
 #include "app/commands.hpp"
 #include "common/errors.hpp"
+#include "solver/petsc_loader.hpp"
 
 namespace {
 
@@ -49,6 +55,43 @@ CLI::Validator wholeNumberFromOne() {
       "INT>=1");
 }
 
+// OpenMP settings that libgomp reads only from the environment, once, when it is loaded (before
+// main), so a process that did not get them re-executes itself once with them set (a user's
+// own setting is kept):
+//  - OMP_WAIT_POLICY=passive: idle OpenMP threads sleep instead of spinning ~300 000 times
+//    after each parallel region; on a machine whose other core is busy that spinning took a
+//    third of the samples (issue 13).
+//  - OMP_THREAD_LIMIT=N for --threads N: CHOLMOD's supernodal factorization asks for 4 threads
+//    whatever omp_set_num_threads says (CHOLMOD_OMP_NUM_THREADS is compiled into SuiteSparse
+//    5), so `--threads 1` ran 4 threads; the thread limit caps that too.
+// The re-execution costs one more program start (dynamic linking, ~0.1 s CPU).
+void applyOpenMpEnvironment(char** argv, int threads) {
+  bool changed = false;
+  if (std::getenv("OMP_WAIT_POLICY") == nullptr) {
+    changed |= setenv("OMP_WAIT_POLICY", "passive", 1) == 0;
+  }
+  if (threads > 0 && std::getenv("OMP_THREAD_LIMIT") == nullptr) {
+    changed |= setenv("OMP_THREAD_LIMIT", std::to_string(threads).c_str(), 1) == 0;
+  }
+  if (changed) execv("/proc/self/exe", argv);
+  // exec failed (no /proc): go on with the defaults
+}
+
+// UMFPACK allocates its numeric workspace (several MiB at 4 k equations) at every
+// factorization and frees it afterwards. With glibc's defaults such blocks are mmap-ed and
+// returned to the kernel each time, so every factorization page-faults and clears them anew:
+// on example 6.1 (40 x 10 block, 4 k equations, one thread) that was ~40% of the CPU time
+// (perf: page faults 19%, memset 9%, umfdl_mem_alloc_tail_block 10%). Serving blocks up to
+// 32 MiB (glibc's largest mmap threshold) from the heap and keeping up to 1 GiB of freed heap
+// lets the next factorization reuse the same pages: task-clock 3.28 -> 1.63 s, page faults
+// 87 928 -> 6 350 for 11 steps (docs/performance/solvers.md). Larger factors stay mmap-ed;
+// their cost is arithmetic, not allocation.
+void reuseFreedMemory() {
+  mallopt(M_MMAP_THRESHOLD, 32 << 20);
+  mallopt(M_TRIM_THRESHOLD, 1 << 30);
+  mallopt(M_TOP_PAD, 64 << 20);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -77,6 +120,26 @@ int main(int argc, char** argv) {
                        "deck and mesh must be those of the run that wrote it)")
           ->check(CLI::ExistingFile);
   runCommand
+      ->add_option("--dump-tangent", run.dumpTangent,
+                   "Write the Newton system of step STEP, iteration ITER (STEP:ITER) in "
+                   "PETSc binary format, with its rigid-body modes (solver/tangent_dump.hpp); "
+                   "repeatable")
+      ->check(CLI::Validator(
+          [](std::string& value) -> std::string {
+            int step = 0, iteration = 0;
+            char colon = 0, extra = 0;
+            if (std::sscanf(value.c_str(), "%d%c%d%c", &step, &colon, &iteration, &extra) != 3 ||
+                colon != ':' || step < 1 || iteration < 1) {
+              return "expected STEP:ITER with both >= 1, got '" + value + "'";
+            }
+            return {};
+          },
+          "STEP:ITER"));
+  runCommand->add_option(
+      "--dump-dir", run.dumpDirectory,
+      "Directory in which --dump-tangent writes <results stem>_tangent_STEP_ITER "
+      "(default: the results file's)");
+  runCommand
       ->add_option("--from-step", run.restartStep,
                    "Step of the --restart file to continue from (default: its last step)")
       ->check(wholeNumberFromOne())
@@ -104,6 +167,22 @@ int main(int argc, char** argv) {
                    "contact/*/total_force)")
       ->delimiter(',');
 
+  cc::app::SolveDumpOptions solveDump;
+  auto* solveDumpCommand =
+      cli.add_subcommand("solve-dump",
+                         "Solve a system written by run --dump-tangent with one linear solver and "
+                         "print what it cost (one JSON line; scripts/solver_survey.py)");
+  solveDumpCommand->add_option("directory", solveDump.directory, "Dump directory")
+      ->required()
+      ->check(CLI::ExistingDirectory);
+  solveDumpCommand
+      ->add_option("--solver", solveDump.solver,
+                   "auto, cholmod, umfpack, mumps, superlu_dist, amg or gamg")
+      ->capture_default_str();
+  solveDumpCommand
+      ->add_option("--rtol", solveDump.rtol, "Relative residual for the iterative solvers")
+      ->capture_default_str();
+
   try {
     cli.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
@@ -111,11 +190,18 @@ int main(int argc, char** argv) {
     return code == 0 ? cc::kExitOk : cc::kExitUsage;
   }
 
+  if (*runCommand) applyOpenMpEnvironment(argv, run.threads);
+  reuseFreedMemory();
   try {
+    // PETSc (and MPI) are started by the first PETSc solver only; finalized once here.
+    struct PetscFinalizer {
+      ~PetscFinalizer() { cc::petsc::finalize(); }
+    } petscFinalizer;
     if (*runCommand) {
       run.commandLine = joinArguments(argc, argv);
       return cc::app::runCommand(run);
     }
+    if (*solveDumpCommand) return cc::app::solveDumpCommand(solveDump);
     if (*checkCommand) {
       if (checkDeck.empty() && !listKeywords) {
         std::cerr << "covcontact check: give a deck (or --keywords)\n";

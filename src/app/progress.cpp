@@ -61,6 +61,17 @@ void Progress::cutback(const CutbackRecord& r) {
                        r.reason, r.newDt));
 }
 
+void Progress::note(const std::string& line) {
+  finish();
+  // The solver choice is part of the run's report; a fallback is a warning, like a cut-back.
+  if (line.rfind("linear solver: ", 0) == 0) {
+    if (!quiet_) fmt::print("{}\n", line);
+  } else {
+    fmt::print(stderr, "{}\n", line);
+  }
+  std::fflush(stdout);
+}
+
 void Progress::finish() {
   if (liveLineOpen_) {
     printOut("\n");

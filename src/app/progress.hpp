@@ -22,6 +22,8 @@ class Progress {
   void iteration(const IterationRecord& record);
   void stepConverged(int step, double time, int iterations, int cutbacks);
   void cutback(const CutbackRecord& record);
+  // A line of its own (linear solver choice, Krylov fallback), also when quiet.
+  void note(const std::string& line);
   // Ends the live line before other output.
   void finish();
 

@@ -8,6 +8,7 @@
 #include <csignal>
 #include <filesystem>
 #include <iostream>
+#include <sstream>
 
 #include "app/commands.hpp"
 #include "app/progress.hpp"
@@ -51,6 +52,11 @@ class RunObserver : public StepObserver {
     writer_.appendCutback(record);
     progress_.cutback(record);
   }
+  void note(const std::string& line) override {
+    if (line.rfind("linear solver: ", 0) == 0) linearSolver_ = line.substr(15);
+    progress_.note(line);
+  }
+  const std::string& linearSolver() const { return linearSolver_; }
   // The stepper whose next step size the restart data of every written step records.
   void attach(const LoadStepper& stepper) { stepper_ = &stepper; }
 
@@ -80,6 +86,7 @@ class RunObserver : public StepObserver {
   bool withStress_;
   verification::ReferenceTracker* references_;
   const LoadStepper* stepper_ = nullptr;
+  std::string linearSolver_;
 };
 
 const char* outcomeName(RunSummary::Outcome outcome) {
@@ -108,6 +115,18 @@ int exitCodeOf(RunSummary::Outcome outcome) {
       return kExitSingular;
   }
   return kExitInternal;
+}
+
+// STEP:ITER of --dump-tangent (checked by the command line parser's validator as well).
+TangentDumpRequest parseDumpRequest(const std::string& text) {
+  TangentDumpRequest request;
+  char colon = 0;
+  std::istringstream in(text);
+  if (!(in >> request.step >> colon >> request.iteration) || colon != ':' || request.step < 1 ||
+      request.iteration < 1 || !in.eof()) {
+    throw std::invalid_argument("--dump-tangent expects STEP:ITER (both >= 1), got '" + text + "'");
+  }
+  return request;
 }
 
 int plannedSteps(const ProblemSpec& spec) {
@@ -186,7 +205,21 @@ int runCommand(const RunOptions& options) {
   stopSignal.store(false);
   std::signal(SIGINT, requestStop);
   std::signal(SIGTERM, requestStop);
-  LoadStepper stepper(*model, observer, spec.phases);
+  // Each dump goes to <dir>/<results stem>_tangent_STEP_ITER, <dir> = --dump-dir or the
+  // results file's directory.
+  std::vector<TangentDumpRequest> dumps;
+  for (const std::string& text : options.dumpTangent) {
+    TangentDumpRequest dump = parseDumpRequest(text);
+    const std::filesystem::path results(path);
+    const std::filesystem::path directory = options.dumpDirectory.empty()
+                                                ? results.parent_path()
+                                                : std::filesystem::path(options.dumpDirectory);
+    dump.directory = (directory / fmt::format("{}_tangent_{}_{}", results.stem().string(),
+                                              dump.step, dump.iteration))
+                         .string();
+    dumps.push_back(dump);
+  }
+  LoadStepper stepper(*model, observer, spec.phases, spec.linearSolver, dumps);
   observer.attach(stepper);
   RunSummary summary;
   try {
@@ -202,15 +235,19 @@ int runCommand(const RunOptions& options) {
     std::cerr << error.what() << "\n";
     const SolverStatistics done = stepper.statistics();
     writer.close({"input error", done.steps, done.iterations, done.cutbacks,
-                  std::chrono::duration<double>(Clock::now() - start).count(), error.what()});
+                  std::chrono::duration<double>(Clock::now() - start).count(), error.what(),
+                  observer.linearSolver(), done.linear.krylovIterations,
+                  done.linear.krylovFallbacks});
     return kExitInput;
   }
   std::signal(SIGINT, SIG_DFL);
   std::signal(SIGTERM, SIG_DFL);
   progress.finish();
   const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  const SolverStatistics work = stepper.statistics();
   writer.close({outcomeName(summary.outcome), summary.stepsConverged, summary.totalIterations,
-                summary.totalCutbacks, seconds, summary.message});
+                summary.totalCutbacks, seconds, summary.message, observer.linearSolver(),
+                work.linear.krylovIterations, work.linear.krylovFallbacks});
   if (summary.outcome == RunSummary::Outcome::Completed) {
     printOut(fmt::format(
         "completed: {} steps, {} Newton iterations, {} cut-backs in {:.2f} s; results in {}\n",

@@ -238,6 +238,13 @@ KeywordDecl referenceKeyword() {
 KeywordDecl solveKeyword() {
   return {.name = "solve",
           .summary = "Opens the solution block; its commands run in order until `end`.",
+          .parameters = {enumValue("solver", choiceNames(linearSolverMethods()),
+                                   "linear solver of the Newton systems: auto (direct below the "
+                                   "measured break-even size, iterative above), cholmod "
+                                   "(CHOLMOD, UMFPACK for unsymmetric tangents), umfpack, "
+                                   "mumps, superlu_dist (direct, PETSc), amg (GMRES + hypre "
+                                   "BoomerAMG), gamg (GMRES + PETSc GAMG)")
+                             .withDefault("auto")},
           .notes = "A deck has exactly one solve block with at least one `steps` line.",
           .handler = handleSolve};
 }

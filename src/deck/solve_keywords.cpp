@@ -135,6 +135,8 @@ void handleSolve(const ParsedLine& line, DeckState& state) {
   }
   state.solveAt = line.where();
   state.insideSolve = true;
+  state.spec.linearSolver.method = choiceValue(linearSolverMethods(), line.text("solver"));
+  state.spec.linearSolver.where = line.where();
 }
 
 void handleEnd(const ParsedLine& line, DeckState& state) {

@@ -48,6 +48,15 @@ const Choices<NewtonSpec::Criterion>& convergenceCriteria() {
   return choices;
 }
 
+const Choices<LinearSolverSpec::Method>& linearSolverMethods() {
+  using Method = LinearSolverSpec::Method;
+  static const Choices<Method> choices = {
+      {"auto", Method::Auto},   {"cholmod", Method::Cholmod},          {"umfpack", Method::Umfpack},
+      {"mumps", Method::Mumps}, {"superlu_dist", Method::SuperluDist}, {"amg", Method::Amg},
+      {"gamg", Method::Gamg}};
+  return choices;
+}
+
 const Choices<bool TangentPartsSpec::*>& tangentParts() {
   static const Choices<bool TangentPartsSpec::*> choices = {
       {"normal_main", &TangentPartsSpec::normalMain},

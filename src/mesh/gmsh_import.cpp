@@ -60,6 +60,11 @@ class GmshSession {
   GmshSession() : lock_(mutex()), callerThreads_(omp_get_max_threads()) {
     gmsh::initialize(0, nullptr, /*readConfigFiles=*/false);
     gmsh::option::setNumber("General.Terminal", 0);
+    // No more meshing threads than the run may use (--threads 1: one thread in the process).
+    for (const char* option : {"General.NumThreads", "Mesh.MaxNumThreads1D", "Mesh.MaxNumThreads2D",
+                               "Mesh.MaxNumThreads3D"}) {
+      gmsh::option::setNumber(option, callerThreads_);
+    }
     // DefineConstant values with a Name also live in gmsh's ONELAB parameter store, which
     // outlives finalize(): without clearing it an import would see the previous one's values.
     gmsh::onelab::clear();

@@ -351,6 +351,10 @@ void ResultsWriter::close(const RunTotals& totals) {
     h5::writeAttribute(file, summary.get(), "cutbacks", totals.cutbacks);
     h5::writeAttribute(file, summary.get(), "wall_seconds", totals.wallSeconds);
     h5::writeAttribute(file, summary.get(), "message", totals.message);
+    h5::writeAttribute(file, summary.get(), "linear_solver", totals.linearSolver);
+    h5::writeAttribute(file, summary.get(), "krylov_iterations",
+                       static_cast<int>(totals.krylovIterations));
+    h5::writeAttribute(file, summary.get(), "krylov_fallbacks", totals.krylovFallbacks);
   }
   state->convergence.reset();
   state->cutbacks.reset();

@@ -33,6 +33,11 @@ struct RunTotals {
   int cutbacks = 0;
   double wallSeconds = 0;
   std::string message;
+  // The linear solver: what `solver=` resolved to, Krylov iterations over the run and the
+  // Krylov solves redone with a direct solver (0 for direct solvers).
+  std::string linearSolver;
+  long krylovIterations = 0;
+  int krylovFallbacks = 0;
 };
 
 // <dir>/<stem>.xdmf and <dir>/<stem>_reactions.csv beside <dir>/<stem>.h5.

@@ -1,12 +1,15 @@
-// LinearSolver: the sparse direct solver behind Newton's method. CHOLMOD serves symmetric
-// systems, UMFPACK unsymmetric ones; a distributed backend (PETSc) would implement the same
-// interface. The symbolic analysis is redone only when the sparsity pattern changes.
+// LinearSolver: the sparse solver behind Newton's method. CHOLMOD serves symmetric systems,
+// UMFPACK unsymmetric ones; the PETSc backend (solver/petsc_solver.cpp) implements the same
+// interface with MUMPS, SuperLU_dist (direct) and GMRES with hypre BoomerAMG or GAMG
+// (iterative). The symbolic analysis is redone only when the sparsity pattern changes.
 #pragma once
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <memory>
+#include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace cc {
 
@@ -28,6 +31,10 @@ struct LinearSolverStatistics {
   // its analysis; UMFPACK: by the factorization): a cost measure that does not depend on the
   // machine's load, for comparing orderings.
   double largestFactorFlops = 0;
+  // Iterative backends: Krylov iterations summed over solves, and solves that stalled or
+  // diverged and were redone with a direct solver (TangentSolver's fallback).
+  long krylovIterations = 0;
+  int krylovFallbacks = 0;
 
   LinearSolverStatistics& operator+=(const LinearSolverStatistics& other);
 };
@@ -38,6 +45,27 @@ struct LinearSolverStatistics {
 // a genuine system this ill-conditioned (cond > 1e13) leaves under three correct digits in a
 // solve, so rejecting it loses nothing that Newton could use.
 inline constexpr double kSingularPivotRatio = 1e-13;
+
+// Where the free equations sit in the mesh. An iterative backend builds from it the 3-dof node
+// blocks (hypre's nodal coarsening) and the near-nullspace of the rigid-body modes (AMG
+// interpolation); direct backends do not need it.
+struct SystemLayout {
+  std::vector<int> freeDofs;     // equation -> nodal dof 3 * node + component, ascending
+  Eigen::Matrix3Xd coordinates;  // current nodal coordinates (all nodes)
+};
+
+// A Krylov solve that stalled or diverged: the caller redoes the solve with a direct solver.
+class KrylovFailure : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// The last solve of an iterative backend.
+struct KrylovReport {
+  int iterations = 0;
+  double relativeResidual = 0;  // ||b - A x|| / ||b|| reached (preconditioned for GMRES)
+  std::string reason;           // PETSc's KSPConvergedReason, spelled out
+};
 
 class LinearSolver {
  public:
@@ -54,6 +82,15 @@ class LinearSolver {
   // Frees the numeric factor and keeps the symbolic analysis: a solver that another one has
   // replaced for now (CHOLMOD while the system is unsymmetric) holds no factor memory.
   virtual void releaseFactor() = 0;
+
+  // Iterative backends only (direct ones ignore these): the relative residual the next solves
+  // must reach (Newton's forcing term), the mesh layout of the equations, the last solve.
+  virtual bool iterative() const { return false; }
+  virtual void setRelativeTolerance(double) {}
+  // Krylov iterations after which a solve counts as stalled (a test forces the fallback).
+  virtual void setIterationLimit(int) {}
+  virtual void setLayout(const SystemLayout&) {}
+  virtual KrylovReport lastSolve() const { return {}; }
 
   const LinearSolverStatistics& statistics() const { return statistics_; }
 
@@ -83,5 +120,9 @@ inline constexpr FillOrdering kDefaultCholmodOrdering = FillOrdering::NestedDiss
 std::unique_ptr<LinearSolver> makeCholmodSolver(FillOrdering ordering = kDefaultCholmodOrdering);
 // Throws std::invalid_argument for NestedDissection.
 std::unique_ptr<LinearSolver> makeUmfpackSolver(FillOrdering ordering = kDefaultOrdering);
+
+// PETSc backends (solver/petsc_solver.cpp; PETSc and MPI are initialized on first use).
+enum class PetscMethod { Mumps, SuperluDist, BoomerAmg, Gamg };
+std::unique_ptr<LinearSolver> makePetscSolver(PetscMethod method);
 
 }  // namespace cc

@@ -45,8 +45,13 @@ struct LoadStepper::PhaseRun {
 };
 
 LoadStepper::LoadStepper(NonlinearProblem& problem, StepObserver& observer,
-                         std::vector<PhaseSpec> phases)
-    : problem_(problem), observer_(observer), phases_(std::move(phases)) {
+                         std::vector<PhaseSpec> phases, LinearSolverSpec linearSolver,
+                         std::vector<TangentDumpRequest> dumps)
+    : problem_(problem),
+      observer_(observer),
+      phases_(std::move(phases)),
+      linearSolver_(linearSolver),
+      dumps_(std::move(dumps)) {
   // The deck validates these; a violation here is a bug upstream, not a user error.
   for (const PhaseSpec& phase : phases_) {
     const CutbackSpec& cutback = phase.cutback;
@@ -76,7 +81,8 @@ SolverStatistics LoadStepper::statistics() const {
 
 RunSummary LoadStepper::run(const StartState& start) {
   summary_ = RunSummary{};
-  newton_ = std::make_unique<Newton>(problem_, observer_, Newton::Clock::now());
+  newton_ = std::make_unique<Newton>(problem_, observer_, Newton::Clock::now(),
+                                     linearSolver_.method, dumps_);
   const Eigen::Index size = 3 * static_cast<Eigen::Index>(problem_.dofMap().numNodes());
   PhaseRun run;
   run.displacement =

@@ -46,7 +46,8 @@ struct StartState {
 
 class LoadStepper {
  public:
-  LoadStepper(NonlinearProblem& problem, StepObserver& observer, std::vector<PhaseSpec> phases);
+  LoadStepper(NonlinearProblem& problem, StepObserver& observer, std::vector<PhaseSpec> phases,
+              LinearSolverSpec linearSolver = {}, std::vector<TangentDumpRequest> dumps = {});
   ~LoadStepper();
   RunSummary run(const StartState& start = {});
   // Work so far (also during run(), e.g. from the observer for a progress line).
@@ -68,6 +69,8 @@ class LoadStepper {
   NonlinearProblem& problem_;
   StepObserver& observer_;
   std::vector<PhaseSpec> phases_;
+  LinearSolverSpec linearSolver_;
+  std::vector<TangentDumpRequest> dumps_;
   std::unique_ptr<Newton> newton_;
   RunSummary summary_;
   StepSize nextStepSize_;

@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "solver/rigid_body_modes.hpp"
+#include "solver/tangent_dump.hpp"
 
 namespace cc {
 
@@ -91,8 +92,15 @@ bool convergedAfterSolve(const NewtonSpec& spec, const Norms& norms, int iterati
 
 }  // namespace
 
-Newton::Newton(NonlinearProblem& problem, StepObserver& observer, Clock::time_point runStart)
-    : problem_(problem), observer_(observer), runStart_(runStart) {}
+Newton::Newton(NonlinearProblem& problem, StepObserver& observer, Clock::time_point runStart,
+               LinearSolverSpec::Method linearSolver, std::vector<TangentDumpRequest> dumps)
+    : problem_(problem),
+      observer_(observer),
+      runStart_(runStart),
+      linear_(linearSolver),
+      dumps_(std::move(dumps)) {
+  linear_.setNotifier([this](const std::string& line) { observer_.note(line); });
+}
 
 void Newton::assembleAt(const Eigen::VectorXd& displacement, const NewtonStep& step,
                         bool withTangent) {
@@ -182,6 +190,7 @@ NewtonResult Newton::solve(const NewtonStep& step, const NewtonSpec& spec,
   const bool undriven =
       (externalForce_.array() == 0).all() && (prescribedIncrement.array() == 0).all();
   Norms norms;
+  double previousResidual = 0, forcing = kForcingMax;
   for (int iteration = 1; iteration <= spec.maxIterations; ++iteration) {
     Eigen::VectorXd rhs;
     try {
@@ -216,7 +225,23 @@ NewtonResult Newton::solve(const NewtonStep& step, const NewtonSpec& spec,
     }
     Eigen::VectorXd du;
     try {
+      for (const TangentDumpRequest& dump : dumps_) {
+        if (dump.step != step.step || dump.iteration != iteration || step.attempt != 0) continue;
+        writeTangentDump(dump.directory, tangent_, rhs, dofs, current_);
+        observer_.note(fmt::format("tangent of step {} iteration {} written to {}", step.step,
+                                   iteration, dump.directory));
+      }
+      linear_.setLayout({dofs.freeDofs(), current_});
       linear_.factorize(tangent_);
+      if (linear_.iterative()) {
+        if (iteration > 1) {
+          const double ratio = norms.residual / previousResidual;
+          forcing =
+              std::min({kForcingMax, kForcingGamma * ratio * ratio, norms.relativeResidual()});
+          forcing = std::max(forcing, kForcingMin);
+        }
+        linear_.setForcing(forcing);
+      }
       du = linear_.solve(rhs);
     } catch (const StepFailure& failure) {
       if (failure.kind() != FailureKind::SingularSystem) {
@@ -227,6 +252,7 @@ NewtonResult Newton::solve(const NewtonStep& step, const NewtonSpec& spec,
                     describeSingularStiffness(tangent_.free, dofs, current_, problem_.bodies()) +
                         " (" + failure.what() + ")");
     }
+    previousResidual = norms.residual;
     if (iteration == 1) {
       // The unit of this step's energies: 2^-scale near the first energy (an exact power of two).
       int exponent = 0;

@@ -25,6 +25,7 @@
 #include <Eigen/Core>
 #include <chrono>
 #include <string>
+#include <vector>
 
 #include "solver/nonlinear_problem.hpp"
 #include "solver/tangent_solver.hpp"
@@ -48,6 +49,25 @@ inline constexpr double kRoundoffResidual = 1e3 * 2.220446049250313e-16;
 // ||rhs|| then is the linearized residual at s = 0. Each trial costs one residual assembly.
 inline constexpr double kLineSearchDecrease = 1e-4;
 inline constexpr int kLineSearchHalvings = 10;
+
+// Inexact Newton (iterative linear solves): the forcing term eta_k, the relative residual the
+// Krylov solve of iteration k must reach, follows Eisenstat & Walker's choice 2 (1996),
+// eta_k = kForcingGamma (||R_k|| / ||R_{k-1}||)^2, and is never above the relative residual
+// ||R_k|| / ||R_1|| of the step, so that it tightens as Newton converges: the error of the
+// inexact solve then stays below the Newton error and the iteration keeps its quadratic rate
+// (the energy criterion 1e-16 needs the last solves accurate to ~1e-8 relative). Bounded to
+// [kForcingMin, kForcingMax]; the first iteration of a step uses kForcingMax.
+inline constexpr double kForcingGamma = 0.9;
+inline constexpr double kForcingMax = 1e-3;
+inline constexpr double kForcingMin = 1e-12;
+
+// `covcontact run --dump-tangent STEP:ITER`: the system of that Newton iteration is written
+// (solver/tangent_dump.hpp) to `directory` before it is solved.
+struct TangentDumpRequest {
+  int step = 0;       // 0 = none
+  int iteration = 0;  // 1-based
+  std::string directory;
+};
 
 struct NewtonStep {
   int step = 0;             // number the step gets if it converges (1-based)
@@ -78,7 +98,9 @@ struct SolverStatistics {
 class Newton {
  public:
   using Clock = std::chrono::steady_clock;
-  Newton(NonlinearProblem& problem, StepObserver& observer, Clock::time_point runStart);
+  Newton(NonlinearProblem& problem, StepObserver& observer, Clock::time_point runStart,
+         LinearSolverSpec::Method linearSolver = LinearSolverSpec::Method::Auto,
+         std::vector<TangentDumpRequest> dumps = {});
 
   // `displacement` (3 * numNodes) holds the converged state at step.previousTime on entry and
   // the solution at step.time when converged; otherwise it is left in between (the caller
@@ -106,6 +128,7 @@ class Newton {
   StepObserver& observer_;
   Clock::time_point runStart_;
   TangentSolver linear_;
+  std::vector<TangentDumpRequest> dumps_;
   SystemMatrices tangent_;
   Eigen::VectorXd internalForce_;
   Eigen::VectorXd externalForce_;

@@ -48,6 +48,8 @@ class StepObserver {
   virtual void stepConverged(int step, double time, int iterations, int cutbacks,
                              const Eigen::VectorXd& displacement,
                              const Eigen::VectorXd& internalForce, bool writeOutput) = 0;
+  // A line for the log: the linear solver chosen, a Krylov solve redone with a direct one.
+  virtual void note(const std::string&) {}
   // Polled between iterations (SIGINT/SIGTERM handling).
   virtual bool stopRequested() const { return false; }
 };

@@ -1,5 +1,8 @@
-// Backend selection with CHOLMOD -> UMFPACK fallback and per-backend symbolic analysis reuse.
+// Backend selection (solver=), CHOLMOD -> UMFPACK fallback, Krylov -> direct fallback and
+// per-backend symbolic analysis reuse.
 #include "solver/tangent_solver.hpp"
+
+#include <fmt/format.h>
 
 #include <algorithm>
 #include <stdexcept>
@@ -18,8 +21,35 @@ LinearSolverStatistics& LinearSolverStatistics::operator+=(const LinearSolverSta
   solveSeconds += other.solveSeconds;
   largestFactorBytes = std::max(largestFactorBytes, other.largestFactorBytes);
   largestFactorFlops = std::max(largestFactorFlops, other.largestFactorFlops);
+  krylovIterations += other.krylovIterations;
+  krylovFallbacks += other.krylovFallbacks;
   return *this;
 }
+
+namespace {
+
+const char* methodSpelling(LinearSolverSpec::Method method) {
+  using Method = LinearSolverSpec::Method;
+  switch (method) {
+    case Method::Auto:
+      return "auto";
+    case Method::Cholmod:
+      return "cholmod";
+    case Method::Umfpack:
+      return "umfpack";
+    case Method::Mumps:
+      return "mumps";
+    case Method::SuperluDist:
+      return "superlu_dist";
+    case Method::Amg:
+      return "amg";
+    case Method::Gamg:
+      return "gamg";
+  }
+  return "?";
+}
+
+}  // namespace
 
 TangentSolver::TangentSolver() : TangentSolver(makeCholmodSolver(), makeUmfpackSolver()) {}
 
@@ -27,7 +57,25 @@ TangentSolver::TangentSolver(std::unique_ptr<LinearSolver> symmetric,
                              std::unique_ptr<LinearSolver> general)
     : symmetric_{std::move(symmetric)}, general_{std::move(general)} {}
 
+TangentSolver::TangentSolver(LinearSolverSpec::Method method) : TangentSolver() {
+  method_ = method;
+}
+
 TangentSolver::~TangentSolver() = default;
+
+void TangentSolver::setLayout(const SystemLayout& layout) {
+  layout_ = layout;
+  if (petsc_.solver) petsc_.solver->setLayout(layout_);
+}
+
+void TangentSolver::releaseOthers(const Backend& keep) {
+  // Only one factor is alive at a time: the backends not used now give their numeric factor
+  // back before the new one is built (peak memory of a run that switches between backends is
+  // one factor, not two; the symbolic analyses stay).
+  for (Backend* backend : {&symmetric_, &general_, &petsc_}) {
+    if (backend != &keep && backend->solver) backend->solver->releaseFactor();
+  }
+}
 
 void TangentSolver::factorizeWith(Backend& backend, const SystemMatrices& system) {
   if (backend.analyzedPattern != system.patternVersion || system.patternVersion == 0) {
@@ -35,21 +83,44 @@ void TangentSolver::factorizeWith(Backend& backend, const SystemMatrices& system
     backend.solver->analyzePattern(system.free);
     backend.analyzedPattern = system.patternVersion;
   }
-  // Only one factor is alive at a time: the backend not used now gives its numeric factor back
-  // before the new one is built (peak memory of a run that switches between CHOLMOD and
-  // UMFPACK is one factor, not two; the symbolic analyses stay).
-  Backend& idle = &backend == &symmetric_ ? general_ : symmetric_;
-  idle.solver->releaseFactor();
+  releaseOthers(backend);
   backend.solver->factorize(system.free);
   active_ = backend.solver.get();
 }
 
-void TangentSolver::factorize(const SystemMatrices& system) {
-  active_ = nullptr;
-  size_ = system.free.rows();
-  if (size_ == 0) return;  // everything prescribed: nothing to solve
+bool TangentSolver::usesPetsc(Eigen::Index size) {
+  using Method = LinearSolverSpec::Method;
+  const bool petsc = method_ == Method::Mumps || method_ == Method::SuperluDist ||
+                     method_ == Method::Amg || method_ == Method::Gamg ||
+                     (method_ == Method::Auto && size >= kIterativeBreakEven);
+  if (petsc && !petsc_.solver) {
+    const PetscMethod petscMethod = method_ == Method::Mumps         ? PetscMethod::Mumps
+                                    : method_ == Method::SuperluDist ? PetscMethod::SuperluDist
+                                    : method_ == Method::Gamg        ? PetscMethod::Gamg
+                                                                     : PetscMethod::BoomerAmg;
+    petsc_.solver = makePetscSolver(petscMethod);
+    petsc_.solver->setLayout(layout_);
+  }
+  if (choice_.empty()) {
+    const std::string backend =
+        petsc ? petsc_.solver->name()
+              : (method_ == Method::Umfpack ? std::string("UMFPACK") : "CHOLMOD/UMFPACK");
+    choice_ = fmt::format("{} -> {}", methodSpelling(method_), backend);
+    if (method_ == Method::Auto) {
+      choice_ +=
+          fmt::format(" ({} equations {} {})", size, petsc ? ">=" : "<", kIterativeBreakEven);
+    }
+    if (petsc_.solver && petsc_.solver->iterative()) {
+      choice_ += "; a stalled Krylov solve falls back to CHOLMOD/UMFPACK";
+    }
+    if (notify_) notify_("linear solver: " + choice_);
+  }
+  return petsc;
+}
+
+void TangentSolver::factorizeDirect(const SystemMatrices& system) {
   std::string choleskyFailure;
-  if (system.symmetric && !choleskyRejected_) {
+  if (system.symmetric && !choleskyRejected_ && method_ != LinearSolverSpec::Method::Umfpack) {
     try {
       factorizeWith(symmetric_, system);
       return;
@@ -68,10 +139,37 @@ void TangentSolver::factorize(const SystemMatrices& system) {
   }
 }
 
+void TangentSolver::factorize(const SystemMatrices& system) {
+  active_ = nullptr;
+  system_ = &system;
+  size_ = system.free.rows();
+  if (size_ == 0) return;  // everything prescribed: nothing to solve
+  if (usesPetsc(size_)) {
+    factorizeWith(petsc_, system);
+    return;
+  }
+  factorizeDirect(system);
+}
+
 Eigen::VectorXd TangentSolver::solve(const Eigen::VectorXd& rhs) {
   if (size_ == 0) return Eigen::VectorXd();
   if (!active_) throw std::logic_error("TangentSolver: solve() without a factorization");
-  Eigen::VectorXd solution = active_->solve(rhs);
+  Eigen::VectorXd solution;
+  if (active_->iterative()) {
+    active_->setRelativeTolerance(forcing_);
+    if (iterationLimit_ > 0) active_->setIterationLimit(iterationLimit_);
+  }
+  try {
+    solution = active_->solve(rhs);
+  } catch (const KrylovFailure& failure) {
+    // A Krylov solve that stalled, or a PETSc direct solve that missed: CHOLMOD/UMFPACK.
+    ++krylovFallbacks_;
+    if (notify_) {
+      notify_(fmt::format("{}; solving this iteration with CHOLMOD/UMFPACK", failure.what()));
+    }
+    factorizeDirect(*system_);
+    solution = active_->solve(rhs);
+  }
   if (!solution.allFinite()) {
     throw StepFailure(FailureKind::NotFinite,
                       active_->name() + ": solution of the linear system is not finite");
@@ -82,6 +180,8 @@ Eigen::VectorXd TangentSolver::solve(const Eigen::VectorXd& rhs) {
 LinearSolverStatistics TangentSolver::statistics() const {
   LinearSolverStatistics total = symmetric_.solver->statistics();
   total += general_.solver->statistics();
+  if (petsc_.solver) total += petsc_.solver->statistics();
+  total.krylovFallbacks = krylovFallbacks_;
   return total;
 }
 

@@ -1,38 +1,63 @@
-// TangentSolver: picks the direct solver for each Newton system. Symmetric tangents go to
-// CHOLMOD; when CHOLMOD finds one not positive definite (legal with contact) UMFPACK takes
-// over for the rest of the step; unsymmetric tangents go to UMFPACK. Each backend repeats its
-// symbolic analysis only when SystemMatrices::patternVersion changes.
+// TangentSolver: picks the linear solver for each Newton system (deck: `solve solver=...`).
+// The direct pair: symmetric tangents go to CHOLMOD; when CHOLMOD finds one not positive
+// definite (legal with contact) UMFPACK takes over for the rest of the step; unsymmetric
+// tangents go to UMFPACK. `solver=auto` uses the direct pair below kIterativeBreakEven free
+// equations and GMRES + hypre BoomerAMG (PETSc) above it. An iterative solve that stalls or
+// diverges is redone with the direct pair for that iteration, and the note says so. Each
+// backend repeats its symbolic analysis only when SystemMatrices::patternVersion changes.
 #pragma once
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 
 #include "fem/assembler.hpp"
 #include "solver/linear_solver.hpp"
+#include "spec/problem_spec.hpp"
 
 namespace cc {
 
+// Free equations from which `solver=auto` solves iteratively. Measured on dumped tangents of
+// example 6.1 refined (docs/performance/solvers.md): below it CHOLMOD/UMFPACK are faster per
+// Newton iteration than GMRES + BoomerAMG; every paper and regression deck is far below it.
+inline constexpr Eigen::Index kIterativeBreakEven = 150000;
+
 class TangentSolver {
  public:
-  TangentSolver();
+  TangentSolver();  // the direct pair
   TangentSolver(std::unique_ptr<LinearSolver> symmetric, std::unique_ptr<LinearSolver> general);
+  explicit TangentSolver(LinearSolverSpec::Method method);
   ~TangentSolver();
 
   // A new load step: try CHOLMOD again for symmetric systems.
   void beginStep() { choleskyRejected_ = false; }
+  // Where the equations sit (iterative backends: node blocks and rigid-body modes).
+  void setLayout(const SystemLayout& layout);
+  // Relative residual the next iterative solves must reach (Newton's forcing term).
+  void setForcing(double relativeTolerance) { forcing_ = relativeTolerance; }
+  // Krylov iterations after which a solve counts as stalled (default: the backend's).
+  void setKrylovIterationLimit(int iterations) { iterationLimit_ = iterations; }
+  // Receives one line for every choice and fallback (printed and logged by the command).
+  void setNotifier(std::function<void(const std::string&)> notify) { notify_ = std::move(notify); }
   // Factorizes system.free (which must outlive the following solves). Throws
   // StepFailure(SingularSystem) naming what both backends reported.
   void factorize(const SystemMatrices& system);
   // Solution of K_ff x = rhs; throws StepFailure(NotFinite) if it is not finite.
   Eigen::VectorXd solve(const Eigen::VectorXd& rhs);
+  // True when the next solve is iterative (Newton then sets a forcing term).
+  bool iterative() const { return active_ && active_->iterative(); }
 
-  // Sum over both backends.
+  // Sum over all backends.
   LinearSolverStatistics statistics() const;
   int choleskyFallbacks() const { return choleskyFallbacks_; }
-  // "CHOLMOD" or "UMFPACK": the backend of the last successful factorization.
+  // "CHOLMOD", "UMFPACK", "MUMPS", "GMRES+BoomerAMG", ...: the backend of the last successful
+  // factorization.
   std::string activeBackend() const { return active_ ? active_->name() : std::string(); }
+  // What `solver=` asked for and what it resolved to, e.g. "auto -> CHOLMOD/UMFPACK (6171
+  // equations < 150000)"; empty before the first factorization.
+  const std::string& choice() const { return choice_; }
 
  private:
   struct Backend {
@@ -40,13 +65,25 @@ class TangentSolver {
     std::uint64_t analyzedPattern = 0;  // SystemMatrices::patternVersion analyzed, 0 = none
   };
   void factorizeWith(Backend& backend, const SystemMatrices& system);
+  void factorizeDirect(const SystemMatrices& system);
+  bool usesPetsc(Eigen::Index size);
+  void releaseOthers(const Backend& keep);
 
+  LinearSolverSpec::Method method_ = LinearSolverSpec::Method::Cholmod;
   Backend symmetric_;
   Backend general_;
+  Backend petsc_;  // created on first use
   LinearSolver* active_ = nullptr;
+  const SystemMatrices* system_ = nullptr;
   bool choleskyRejected_ = false;
   int choleskyFallbacks_ = 0;
+  int krylovFallbacks_ = 0;
   Eigen::Index size_ = 0;
+  double forcing_ = 1e-8;
+  int iterationLimit_ = 0;  // 0 = the backend's default
+  SystemLayout layout_;
+  std::string choice_;
+  std::function<void(const std::string&)> notify_;
 };
 
 }  // namespace cc

@@ -129,6 +129,18 @@ struct NewtonSpec {
   bool lineSearch = false;
 };
 
+// The linear solver of the Newton systems (deck: `solve solver=...`, issue 13). Auto keeps the
+// direct pair (CHOLMOD for symmetric positive definite tangents, UMFPACK otherwise) below a
+// measured break-even size and uses the iterative PETSc backend above it; Cholmod is that pair
+// at every size (CHOLMOD cannot factor an unsymmetric tangent). The others force one backend:
+// UMFPACK alone, MUMPS or SuperLU_dist (direct, through PETSc), hypre BoomerAMG or PETSc's GAMG
+// preconditioning GMRES.
+struct LinearSolverSpec {
+  enum class Method { Auto, Cholmod, Umfpack, Mumps, SuperluDist, Amg, Gamg };
+  Method method = Method::Auto;
+  SourceLocation where;
+};
+
 struct CutbackSpec {
   int maxCutbacks = 10;  // per step, total halvings before the run stops
   double factor = 0.5;   // dt multiplier on failure
@@ -184,6 +196,7 @@ struct ProblemSpec {
   std::vector<RigidSurfaceSpec> rigidSurfaces;
   std::vector<ContactSpec> contacts;
   std::vector<PhaseSpec> phases;
+  LinearSolverSpec linearSolver;
   OutputSpec output;
   std::vector<ReferenceSpec> references;
 };

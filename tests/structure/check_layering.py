@@ -21,6 +21,7 @@ LAYERS = [
     ["mesh"],                                # gmsh import, node and face sets
     ["elements", "contact"],                 # element and contact kernels
     ["solver", "output"],                    # Newton, stepping, linear solvers; HDF5/XDMF/CSV
+    ["parallel"],                            # PETSc/MPI backend plugin behind LinearSolver
     ["model"],                               # ProblemSpec + mesh -> the runtime model
     ["verification"],                        # analytic references, reports
     ["app"],                                 # the covcontact command

@@ -1,0 +1,227 @@
+// PETSc backend (issue 13) against the direct solvers on assembled 3-dof-per-node systems: MUMPS
+// and SuperLU_dist to round-off, GMRES + BoomerAMG / GAMG to the accuracy their tolerance
+// guarantees (||x - x*|| / ||x*|| <= cond(K) * rtol for a true relative residual rtol), the
+// Krylov -> direct fallback, singular systems, and the `solver=` choice of TangentSolver.
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <string>
+#include <vector>
+
+#include "common/errors.hpp"
+#include "solver/linear_solver.hpp"
+#include "solver/petsc_loader.hpp"
+#include "solver/tangent_solver.hpp"
+
+namespace cc {
+namespace {
+
+// A lattice of n x n x n nodes joined by axial springs along the edges and face diagonals of
+// every cell (a stable truss: each 3 x 3 block is k d d^T, so the free lattice has exactly the
+// six rigid-body modes as nullspace). The nodes of the bottom layer z = 0 are fixed; their dofs
+// are not equations. `skew` adds an unsymmetric coupling skew * (e_x e_y^T - e_y e_x^T) to the
+// springs of the top layer (like the frictional slip tangent of a contact surface), keeping the
+// pattern.
+struct Lattice {
+  SystemMatrices system;
+  SystemLayout layout;
+};
+
+Lattice lattice(int n, double skew = 0.0) {
+  Lattice result;
+  const int nodes = n * n * n;
+  auto node = [n](int i, int j, int k) { return i + n * (j + n * k); };
+  result.layout.coordinates.resize(3, nodes);
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) result.layout.coordinates.col(node(i, j, k)) << i, j, k;
+  std::vector<int> equation(3 * nodes, -1);
+  for (int d = 0; d < 3 * nodes; ++d) {
+    if (d / 3 >= n * n) {  // not on the bottom layer
+      equation[d] = static_cast<int>(result.layout.freeDofs.size());
+      result.layout.freeDofs.push_back(d);
+    }
+  }
+  std::vector<Eigen::Triplet<double>> entries;
+  auto spring = [&](int a, int b) {
+    const Eigen::Vector3d d =
+        (result.layout.coordinates.col(b) - result.layout.coordinates.col(a)).normalized();
+    Eigen::Matrix3d block = d * d.transpose();
+    const bool onTop = a / (n * n) == n - 1 && b / (n * n) == n - 1;
+    if (onTop) block(0, 1) += skew, block(1, 0) -= skew;
+    const int ends[2] = {a, b};
+    for (int p = 0; p < 2; ++p)
+      for (int q = 0; q < 2; ++q)
+        for (int r = 0; r < 3; ++r)
+          for (int c = 0; c < 3; ++c) {
+            const int row = equation[3 * ends[p] + r], col = equation[3 * ends[q] + c];
+            if (row >= 0 && col >= 0) {
+              entries.emplace_back(row, col, (p == q ? 1.0 : -1.0) * block(r, c));
+            }
+          }
+  };
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const int a = node(i, j, k);
+        if (i + 1 < n) spring(a, node(i + 1, j, k));
+        if (j + 1 < n) spring(a, node(i, j + 1, k));
+        if (k + 1 < n) spring(a, node(i, j, k + 1));
+        if (i + 1 < n && j + 1 < n)
+          spring(a, node(i + 1, j + 1, k)), spring(node(i + 1, j, k), node(i, j + 1, k));
+        if (i + 1 < n && k + 1 < n)
+          spring(a, node(i + 1, j, k + 1)), spring(node(i + 1, j, k), node(i, j, k + 1));
+        if (j + 1 < n && k + 1 < n)
+          spring(a, node(i, j + 1, k + 1)), spring(node(i, j + 1, k), node(i, j, k + 1));
+      }
+  const int size = static_cast<int>(result.layout.freeDofs.size());
+  result.system.free.resize(size, size);
+  result.system.free.setFromTriplets(entries.begin(), entries.end());
+  result.system.free.makeCompressed();
+  result.system.symmetric = skew == 0.0;
+  result.system.patternVersion = 1;
+  return result;
+}
+
+Eigen::VectorXd rightHandSide(Eigen::Index size) {
+  Eigen::VectorXd rhs(size);
+  for (Eigen::Index k = 0; k < size; ++k) rhs[k] = std::sin(1.0 + static_cast<double>(k));
+  return rhs;
+}
+
+double conditionNumber(const SparseMatrix& matrix) {
+  const Eigen::MatrixXd dense(matrix);
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(dense);
+  return svd.singularValues()(0) / svd.singularValues()(svd.singularValues().size() - 1);
+}
+
+Eigen::VectorXd directSolution(const SystemMatrices& system, const Eigen::VectorXd& rhs) {
+  TangentSolver direct(LinearSolverSpec::Method::Cholmod);
+  direct.factorize(system);
+  return direct.solve(rhs);
+}
+
+double relativeError(const Eigen::VectorXd& x, const Eigen::VectorXd& reference) {
+  return (x - reference).norm() / reference.norm();
+}
+
+TEST(PetscSolver, DirectBackendsMatchCholmodToRoundoff) {
+  const Lattice model = lattice(5);
+  const Eigen::VectorXd rhs = rightHandSide(model.system.free.rows());
+  const Eigen::VectorXd reference = directSolution(model.system, rhs);
+  // Backward-stable LU: error <= cond * (a modest multiple of) machine epsilon.
+  const double bound = conditionNumber(model.system.free) * 1e3 * 2.2e-16;
+  for (PetscMethod method : {PetscMethod::Mumps, PetscMethod::SuperluDist}) {
+    auto solver = makePetscSolver(method);
+    EXPECT_FALSE(solver->iterative());
+    solver->analyzePattern(model.system.free);
+    solver->factorize(model.system.free);
+    EXPECT_LE(relativeError(solver->solve(rhs), reference), bound) << solver->name();
+  }
+}
+
+TEST(PetscSolver, KrylovBackendsReachTheirToleranceOnSymmetricAndUnsymmetricSystems) {
+  for (double skew : {0.0, 0.3}) {
+    const Lattice model = lattice(6, skew);
+    const Eigen::VectorXd rhs = rightHandSide(model.system.free.rows());
+    const Eigen::VectorXd reference = directSolution(model.system, rhs);
+    const double rtol = 1e-9;
+    const double cond = conditionNumber(model.system.free);
+    for (PetscMethod method : {PetscMethod::BoomerAmg, PetscMethod::Gamg}) {
+      auto solver = makePetscSolver(method);
+      EXPECT_TRUE(solver->iterative());
+      solver->setLayout(model.layout);  // node blocks and rigid-body modes
+      solver->setRelativeTolerance(rtol);
+      solver->analyzePattern(model.system.free);
+      solver->factorize(model.system.free);
+      const Eigen::VectorXd x = solver->solve(rhs);
+      const double residual = (model.system.free * x - rhs).norm() / rhs.norm();
+      EXPECT_LE(residual, rtol) << solver->name() << " skew " << skew;
+      EXPECT_LE(relativeError(x, reference), cond * rtol) << solver->name() << " skew " << skew;
+      EXPECT_GT(solver->lastSolve().iterations, 0);
+      EXPECT_LT(solver->lastSolve().iterations, 100)
+          << solver->name() << " skew " << skew << ": " << solver->lastSolve().reason;
+    }
+  }
+}
+
+TEST(PetscSolver, RepeatedFactorizationsOfOnePatternReuseTheAnalysis) {
+  Lattice model = lattice(4);
+  const Eigen::VectorXd rhs = rightHandSide(model.system.free.rows());
+  TangentSolver solver(LinearSolverSpec::Method::Mumps);
+  for (double scale : {1.0, 2.0, 4.0}) {
+    SystemMatrices scaled = model.system;
+    scaled.free *= scale;
+    solver.factorize(scaled);
+    const Eigen::VectorXd x = solver.solve(rhs);
+    EXPECT_LE(relativeError(scale * x, directSolution(model.system, rhs)), 1e-10);
+  }
+  EXPECT_EQ(solver.statistics().analyses, 1);
+  EXPECT_EQ(solver.statistics().factorizations, 3);
+  EXPECT_EQ(solver.activeBackend(), "MUMPS");
+}
+
+TEST(PetscSolver, StalledKrylovSolveFallsBackToTheDirectSolverAndSaysSo) {
+  const Lattice model = lattice(5);
+  const Eigen::VectorXd rhs = rightHandSide(model.system.free.rows());
+  TangentSolver solver(LinearSolverSpec::Method::Amg);
+  std::vector<std::string> notes;
+  solver.setNotifier([&](const std::string& line) { notes.push_back(line); });
+  solver.setLayout(model.layout);
+  // Two GMRES iterations cannot reach 1e-10: the solve stalls.
+  solver.setForcing(1e-10);
+  solver.setKrylovIterationLimit(2);
+  solver.factorize(model.system);
+  EXPECT_TRUE(solver.iterative());
+  const Eigen::VectorXd x = solver.solve(rhs);
+  EXPECT_LE(relativeError(x, directSolution(model.system, rhs)),
+            conditionNumber(model.system.free) * 1e3 * 2.2e-16);
+  EXPECT_EQ(solver.statistics().krylovFallbacks, 1);
+  EXPECT_EQ(solver.activeBackend(), "CHOLMOD");
+  ASSERT_EQ(notes.size(), 2u) << solver.activeBackend();
+  EXPECT_NE(notes[0].find("linear solver: amg -> GMRES+BoomerAMG"), std::string::npos) << notes[0];
+  EXPECT_NE(notes[1].find("solving this iteration with CHOLMOD/UMFPACK"), std::string::npos)
+      << notes[1];
+}
+
+TEST(PetscSolver, SingularSystemIsASingularStepFailure) {
+  // A free chain: the constant vector is in the nullspace.
+  std::vector<Eigen::Triplet<double>> entries;
+  const int n = 12;
+  for (int s = 0; s + 1 < n; ++s) {
+    entries.emplace_back(s, s, 1.0), entries.emplace_back(s + 1, s + 1, 1.0);
+    entries.emplace_back(s, s + 1, -1.0), entries.emplace_back(s + 1, s, -1.0);
+  }
+  SparseMatrix matrix(n, n);
+  matrix.setFromTriplets(entries.begin(), entries.end());
+  matrix.makeCompressed();
+  auto solver = makePetscSolver(PetscMethod::Mumps);
+  solver->analyzePattern(matrix);
+  try {
+    solver->factorize(matrix);
+    FAIL() << "MUMPS factorized a singular matrix";
+  } catch (const StepFailure& failure) {
+    EXPECT_EQ(failure.kind(), FailureKind::SingularSystem);
+    EXPECT_NE(std::string(failure.what()).find("MUMPS"), std::string::npos) << failure.what();
+  }
+}
+
+TEST(PetscSolver, AutoKeepsTheDirectSolversBelowTheBreakEven) {
+  const Lattice model = lattice(4);
+  TangentSolver solver(LinearSolverSpec::Method::Auto);
+  solver.factorize(model.system);
+  EXPECT_EQ(solver.activeBackend(), "CHOLMOD");
+  EXPECT_EQ(solver.choice(), fmt::format("auto -> CHOLMOD/UMFPACK ({} equations < {})",
+                                         model.system.free.rows(), kIterativeBreakEven));
+}
+
+// PETSc and MPI are finalized once, after every test of the program.
+class PetscEnvironment : public ::testing::Environment {
+ public:
+  void TearDown() override { petsc::finalize(); }
+};
+const auto* const environment = ::testing::AddGlobalTestEnvironment(new PetscEnvironment);
+
+}  // namespace
+}  // namespace cc
