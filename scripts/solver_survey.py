@@ -135,8 +135,9 @@ def plot(records, path):
     import matplotlib.pyplot as plt
     fig, ax = plt.subplots(figsize=(7, 5))
     slopes = {}
-    for solver in SOLVERS:
-        for state, marker in (("stick", "o"), ("slip", "s")):
+    for index, solver in enumerate(SOLVERS):
+        color = f"C{index}"
+        for state, marker, line in (("stick", "o", "-"), ("slip", "s", "--")):
             pts = sorted((r["equations"], cpu_total(r)) for r in records
                          if r["solver"] == solver and r.get("state") == state and not r.get("error"))
             if not pts:
@@ -147,7 +148,7 @@ def plot(records, path):
                 slope = np.polyfit(np.log(n), np.log(t), 1)[0]
                 slopes[label] = slope
                 label += f" (slope {slope:.2f})"
-            ax.loglog(n, t, marker=marker, label=label)
+            ax.loglog(n, t, marker=marker, linestyle=line, color=color, label=label)
     ax.set_xlabel("equations")
     ax.set_ylabel("CPU s: analysis + factorization/setup + solve (one thread)")
     ax.set_title("One Newton system, dumped tangents of example 6.1 scaled")

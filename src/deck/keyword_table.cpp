@@ -239,8 +239,8 @@ KeywordDecl solveKeyword() {
   return {.name = "solve",
           .summary = "Opens the solution block; its commands run in order until `end`.",
           .parameters = {enumValue("solver", choiceNames(linearSolverMethods()),
-                                   "linear solver of the Newton systems: auto (direct below the "
-                                   "measured break-even size, iterative above), cholmod "
+                                   "linear solver of the Newton systems: auto (cholmod below "
+                                   "50 000 free equations, gamg above), cholmod "
                                    "(CHOLMOD, UMFPACK for unsymmetric tangents), umfpack, "
                                    "mumps, superlu_dist (direct, PETSc), amg (GMRES + hypre "
                                    "BoomerAMG), gamg (GMRES + PETSc GAMG)")

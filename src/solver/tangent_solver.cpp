@@ -96,8 +96,8 @@ bool TangentSolver::usesPetsc(Eigen::Index size) {
   if (petsc && !petsc_.solver) {
     const PetscMethod petscMethod = method_ == Method::Mumps         ? PetscMethod::Mumps
                                     : method_ == Method::SuperluDist ? PetscMethod::SuperluDist
-                                    : method_ == Method::Gamg        ? PetscMethod::Gamg
-                                                                     : PetscMethod::BoomerAmg;
+                                    : method_ == Method::Amg         ? PetscMethod::BoomerAmg
+                                                                     : PetscMethod::Gamg;
     petsc_.solver = makePetscSolver(petscMethod);
     petsc_.solver->setLayout(layout_);
   }

@@ -2,7 +2,7 @@
 // The direct pair: symmetric tangents go to CHOLMOD; when CHOLMOD finds one not positive
 // definite (legal with contact) UMFPACK takes over for the rest of the step; unsymmetric
 // tangents go to UMFPACK. `solver=auto` uses the direct pair below kIterativeBreakEven free
-// equations and GMRES + hypre BoomerAMG (PETSc) above it. An iterative solve that stalls or
+// equations and GMRES + GAMG (PETSc) above it. An iterative solve that stalls or
 // diverges is redone with the direct pair for that iteration, and the note says so. Each
 // backend repeats its symbolic analysis only when SystemMatrices::patternVersion changes.
 #pragma once
@@ -19,10 +19,13 @@
 
 namespace cc {
 
-// Free equations from which `solver=auto` solves iteratively. Measured on dumped tangents of
-// example 6.1 refined (docs/performance/solvers.md): below it CHOLMOD/UMFPACK are faster per
-// Newton iteration than GMRES + BoomerAMG; every paper and regression deck is far below it.
-inline constexpr Eigen::Index kIterativeBreakEven = 150000;
+// Free equations from which `solver=auto` solves iteratively (GMRES + GAMG). Measured on dumped
+// tangents of the scaling decks (docs/performance/solvers.md, one thread, CPU seconds per
+// system): 14 k equations UMFPACK 0.6, GAMG 0.7, BoomerAMG 0.6; 45 k equations UMFPACK 2.5
+// (about 1.7 without the analysis that Newton reuses), GAMG 1.8, BoomerAMG 2.7, MUMPS 2.2. The
+// whole 57 k scaling run took 39.8 CPU s with GAMG (59 Newton iterations) against ~65 with
+// CHOLMOD/UMFPACK (56). Every paper and regression deck is far below it (at most ~20 k).
+inline constexpr Eigen::Index kIterativeBreakEven = 50000;
 
 class TangentSolver {
  public:
