@@ -254,6 +254,10 @@ PointSetup ContactPair::setupFor(const Point& point) const {
   setup.slave = point.slave;
   setup.history = point.committed;
   setup.law = config_.law;
+  if (config_.augmented) {
+    setup.history.multiplierNormal = point.multiplierNormal;
+    setup.history.tractionAugmentation = point.tractionAugmentation;
+  }
   setup.parameter = point.xi;
   setup.gaussWeight = point.gaussWeight;
   setup.surface = &surface_;
@@ -278,6 +282,12 @@ void ContactPair::storeTrial(Point& point, const PointEvaluation& e, const LawPa
   if (e.response.state != ContactState::Open && e.response.frictional) {
     t.traction = e.response.tangential.vector;
     t.tractionCovariant = e.response.tangential.covariant;
+    // Lambda_T = (T^tr_i + eps_T Delta rho . rho_i) rho^i: the trial before the increment.
+    for (int i = 0; i < 2; ++i) {
+      t.tractionBase += (e.response.tangential.trialCovariant[i] +
+                         law.penaltyTangential * kin.slip.dot(kin.frame.rhoCov[i])) *
+                        kin.frame.rhoContra[i];
+    }
     if (e.response.state == ContactState::Slip && law.penaltyTangential > 0) {
       // Slip of this step: the part of the trial traction the return mapping removed.
       t.slipIncrement =
@@ -330,6 +340,8 @@ bool ContactPair::tangentSymmetric() const {
 }
 
 void ContactPair::commitStep() {
+  accountDissipation();
+  commitAugmentation();
   for (Point& point : points_) {
     PointHistory& h = point.committed;
     const Trial& t = point.trial;
@@ -352,6 +364,7 @@ void ContactPair::commitStep() {
 }
 
 void ContactPair::restoreStep() {
+  restoreAugmentation();
   for (Point& point : points_) {
     if (config_.kind != PointKind::SegmentToAnalytical) {
       point.segment = point.committedSearchSegment;
@@ -376,6 +389,7 @@ ContactPairRecord ContactPair::record() const {
   r.slipIncrement.resize(n);
   r.accumulatedSlip.resize(n);
   r.weight.resize(n);
+  r.stepDissipation.resize(n);
   std::map<int, Eigen::Vector3d> nodalForce;  // physical force on the slave side
   for (int i = 0; i < n; ++i) {
     const Point& p = points_[i];
@@ -388,6 +402,7 @@ ContactPairRecord ContactPair::record() const {
     r.slipIncrement[i] = t.slipIncrement;
     r.accumulatedSlip[i] = p.committed.accumulatedSlip;
     r.weight[i] = t.weight;
+    r.stepDissipation[i] = pointDissipation(t);
     // Force on the slave body: -(N n - T) w (the opposite of the internal-force contribution).
     const Eigen::Vector3d force =
         t.state == ContactState::Open
@@ -406,6 +421,12 @@ ContactPairRecord ContactPair::record() const {
     r.slaveNodes.push_back(node);
     r.slaveNodalForce.col(column++) = force;
   }
+  r.penaltyNormal = config_.law.penaltyNormal;
+  r.penaltyTangential = config_.law.penaltyTangential;
+  r.automaticPenalty = config_.automaticPenalty;
+  r.penaltyEnergy = penaltyEnergy();
+  r.dissipation = stepDissipation_;
+  r.dissipatedEnergy = dissipatedEnergy_;
   return r;
 }
 
