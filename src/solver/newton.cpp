@@ -153,7 +153,10 @@ NewtonResult Newton::solve(const NewtonStep& step, const NewtonSpec& spec,
       return failed(iteration, failure.kind(), failure.what());
     }
     norms.residual = rhs.norm();
-    if (iteration == 1) norms.firstResidual = norms.residual;
+    if (iteration == 1) {
+      norms.firstResidual = step.referenceResidual > 0 ? step.referenceResidual : norms.residual;
+      firstResidual_ = norms.firstResidual;
+    }
     if (!std::isfinite(norms.residual)) {
       return failed(iteration, FailureKind::NotFinite, "residual is not finite");
     }
@@ -182,7 +185,10 @@ NewtonResult Newton::solve(const NewtonStep& step, const NewtonSpec& spec,
                         " (" + failure.what() + ")");
     }
     norms.energy = std::abs(du.dot(rhs));
-    if (iteration == 1) norms.firstEnergy = norms.energy;
+    if (iteration == 1) {
+      norms.firstEnergy = step.referenceEnergy > 0 ? step.referenceEnergy : norms.energy;
+      firstEnergy_ = norms.firstEnergy;
+    }
     if (iteration == 1) applyPrescribed();
     const double fraction = spec.lineSearch ? lineSearch(step, du, rhs, displacement) : 1.0;
     addToFree(displacement, du, fraction);
