@@ -63,6 +63,7 @@ class RunObserver : public StepObserver {
   void stepConverged(int step, double time, int iterations, int cutbacks,
                      const Eigen::VectorXd& displacement, const Eigen::VectorXd& internalForce,
                      bool writeOutput) override {
+    model_.accountEnergy(time, displacement, internalForce);  // every step: a running sum
     const bool compare = references_ && !references_->empty();
     if (writeOutput || compare) {
       StepRecord record = model_.stepRecord(step, time, iterations, cutbacks, displacement,
@@ -184,6 +185,13 @@ int runCommand(const RunOptions& options) {
                          spec.title.empty() ? options.deck : spec.title, model->mesh().numNodes(),
                          model->elementCount(), model->dofMap().numFree(),
                          model->contactPointCount(), model->threads()));
+    for (const auto& pair : model->contactPairs()) {
+      const contact::ContactPairConfig& config = pair->config();
+      if (config.automaticPenalty) {
+        printOut(fmt::format("contact '{}': automatic penalty eps_n = {:.6g}, eps_t = {:.6g}\n",
+                             config.name, config.law.penaltyNormal, config.law.penaltyTangential));
+      }
+    }
     if (!options.restartFile.empty()) {
       printOut(fmt::format("continuing from step {} (t = {:.6g}) of {}\n", startState.step,
                            startState.time, options.restartFile));

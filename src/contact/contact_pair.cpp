@@ -145,6 +145,10 @@ PointSetup ContactPair::setupFor(const PairPoint& point) const {
   setup.slave = point.slave;
   setup.history = point.committed;
   setup.law = config_.law;
+  if (config_.augmented) {
+    setup.history.multiplierNormal = point.multiplierNormal;
+    setup.history.tractionAugmentation = point.tractionAugmentation;
+  }
   setup.parameter = point.xi;
   setup.gaussWeight = point.gaussWeight;
   setup.surface = &surface_;
@@ -195,6 +199,8 @@ bool ContactPair::tangentSymmetric() const {
 }
 
 void ContactPair::commitStep() {
+  accountDissipation();
+  commitAugmentation();
   for (PairPoint& point : points_) {
     PointHistory& h = point.committed;
     const PointTrial& t = point.trial;
@@ -217,6 +223,7 @@ void ContactPair::commitStep() {
 }
 
 void ContactPair::restoreStep() {
+  restoreAugmentation();
   for (PairPoint& point : points_) {
     if (searchesMasterSegments(config_.kind)) {
       point.segment = point.committedSearchSegment;
@@ -230,7 +237,16 @@ void ContactPair::restoreStep() {
 }
 
 ContactPairRecord ContactPair::record() const {
-  return pairRecord(config_.name, points_);
+  ContactPairRecord r = pairRecord(config_.name, points_);
+  r.stepDissipation.resize(pointCount());
+  for (int i = 0; i < pointCount(); ++i) r.stepDissipation[i] = pointDissipation(points_[i].trial);
+  r.penaltyNormal = config_.law.penaltyNormal;
+  r.penaltyTangential = config_.law.penaltyTangential;
+  r.automaticPenalty = config_.automaticPenalty;
+  r.penaltyEnergy = penaltyEnergy();
+  r.dissipation = stepDissipation_;
+  r.dissipatedEnergy = dissipatedEnergy_;
+  return r;
 }
 
 }  // namespace cc::contact

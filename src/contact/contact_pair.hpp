@@ -26,6 +26,12 @@ struct ContactPairConfig {
   int integrationPoints = 2;  // Gauss points per direction (STS, STAS)
   TangentMode tangentMode = TangentMode::Paper;
   TangentParts parts;
+  bool automaticPenalty = false;  // eps_N/eps_T chosen by the model builder (printed, stored)
+  // Augmented Lagrangian (contact_pair_augmentation.cpp): Uzawa updates per step until every
+  // multiplier update is below augmentationTolerance * max |N|.
+  bool augmented = false;
+  double augmentationTolerance = 1e-3;
+  int maxAugmentations = 100;
 };
 
 // A rigid translation of the STAS surface as a function of time (called serially).
@@ -56,6 +62,19 @@ class ContactPair : public Contribution {
   // Output of the last evaluated (after commit: converged) state.
   ContactPairRecord record() const;
 
+  // Augmented Lagrangian (contact_pair_augmentation.cpp): after a converged Newton solve, checks
+  // the stopping rule and otherwise updates the multipliers (Uzawa) for another solve.
+  enum class Augmentation { Converged, Updated, Failed };
+  Augmentation augment();
+  const std::string& augmentationMessage() const { return lastAugmentationMessage_; }
+  int augmentations() const { return augmentations_; }
+
+  // Energy (contact_pair_energy.cpp): the stored penalty energy of the last evaluated state, and
+  // the frictional dissipation of the last committed step and since the start of the run.
+  double penaltyEnergy() const;
+  double stepDissipation() const { return stepDissipation_; }
+  double dissipatedEnergy() const { return dissipatedEnergy_; }
+
   // Restart (contact_pair_history.cpp): the committed history of every point and the search
   // state it continues from, one column of kHistoryRows numbers per point, and its
   // restoration. importHistory throws std::invalid_argument if the table does not fit the pair.
@@ -74,6 +93,12 @@ class ContactPair : public Contribution {
   // Table 1, step 1: the projections in the initial configuration start the history.
   void initializeHistory(const AssemblyState& state);
   PointSetup setupFor(const PairPoint& point) const;
+  // Dissipation w mu |N| Delta lambda of a point's trial state (contact_pair_energy.cpp).
+  double pointDissipation(const PointTrial& trial) const;
+  void accountDissipation();  // at commit: adds the step's dissipation to the run's
+  // At commit / cut-back: the multipliers of the step become committed / are forgotten.
+  void commitAugmentation();
+  void restoreAugmentation();
 
   ContactPairConfig config_;
   SegmentTracker tracker_;
@@ -85,6 +110,10 @@ class ContactPair : public Contribution {
   SurfaceMotion motion_;
   Eigen::Vector3d surfaceOffset_ = Eigen::Vector3d::Zero();
   bool historyInitialized_ = false;
+  int augmentations_ = 0;  // Uzawa updates in the current step
+  std::string lastAugmentationMessage_;
+  double stepDissipation_ = 0;
+  double dissipatedEnergy_ = 0;  // since the start of this run (not part of the restart data)
 };
 
 }  // namespace cc::contact

@@ -45,6 +45,11 @@ struct PointHistory {
   Eigen::Vector3d surfaceOffset = Eigen::Vector3d::Zero();      // STAS: rigid translation at step n
   ContactState state = ContactState::Open;
   double accumulatedSlip = 0;
+  // Augmented Lagrangian (contact_pair_augmentation.cpp): the normal multiplier lambda_N <= 0
+  // of the current Uzawa update, and the tangential augmentation A of this step, a Cartesian
+  // vector added to the trial traction by eq. (51) (zero for the paper's penalty).
+  double multiplierNormal = 0;
+  Eigen::Vector3d tractionAugmentation = Eigen::Vector3d::Zero();
 };
 
 template <class Scalar>
@@ -73,8 +78,13 @@ template <class Scalar>
 PointResponse<Scalar> pointResponse(const PointKinematics<Scalar>& kin, const PointHistory& history,
                                     const LawParameters& law) {
   PointResponse<Scalar> response;
-  if (kin.gap > 0) return response;  // open: g > 0, no traction (Table 1, loop 3)
-  response.normal = normalTraction(kin.gap, law.penaltyNormal);
+  if (history.multiplierNormal == 0) {
+    if (kin.gap > 0) return response;  // open: g > 0, no traction (Table 1, loop 3)
+    response.normal = normalTraction(kin.gap, law.penaltyNormal);
+  } else {  // augmented Lagrangian: open where lambda_N + eps_N g > 0
+    response.normal = augmentedNormalTraction(kin.gap, law.penaltyNormal, history.multiplierNormal);
+    if (response.normal == 0) return response;
+  }
   response.state = ContactState::Stick;
   response.tangential.covariant.setZero();
   response.tangential.trialCovariant.setZero();
@@ -99,6 +109,10 @@ PointResponse<Scalar> pointResponse(const PointKinematics<Scalar>& kin, const Po
         trial = convectiveTrialTraction(kin.frame, history.tractionCovariant, kin.xi, history.xi,
                                         law.penaltyTangential);
         break;
+    }
+    if (!history.tractionAugmentation.isZero(0)) {
+      trial += translateTractionInParallel(
+          kin.frame, Vec3<Scalar>(history.tractionAugmentation.cast<Scalar>()));
     }
     response.tangential = returnMapping(kin.frame, trial, response.normal, law.friction,
                                         law.penaltyTangential, history.state == ContactState::Slip);

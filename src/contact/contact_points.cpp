@@ -121,6 +121,12 @@ PointTrial trialOf(const PointEvaluation& e, const LawParameters& law) {
   if (e.response.state != ContactState::Open && e.response.frictional) {
     t.traction = e.response.tangential.vector;
     t.tractionCovariant = e.response.tangential.covariant;
+    // Lambda_T = (T^tr_i + eps_T Delta rho . rho_i) rho^i: the trial before the increment.
+    for (int i = 0; i < 2; ++i) {
+      t.tractionBase += (e.response.tangential.trialCovariant[i] +
+                         law.penaltyTangential * kin.slip.dot(kin.frame.rhoCov[i])) *
+                        kin.frame.rhoContra[i];
+    }
     if (e.response.state == ContactState::Slip && law.penaltyTangential > 0) {
       // Slip of this step: the part of the trial traction the return mapping removed.
       t.slipIncrement =

@@ -37,6 +37,9 @@ struct PointTrial {
   double slipIncrement = 0;
   ContactState state = ContactState::Open;
   bool symmetric = true;
+  // Lambda_T: the traction the trial started from (T^(n) carried to the current point plus
+  // the augmentation), Cartesian; T - Lambda_T is the tangential multiplier update.
+  Eigen::Vector3d tractionBase = Eigen::Vector3d::Zero();
 };
 
 struct PairPoint {
@@ -61,6 +64,12 @@ struct PairPoint {
   PointLayout layout;
   PointHistory committed;
   PointTrial trial;
+  // Augmented Lagrangian: lambda_N of the current Uzawa update and of the last commit, and
+  // the tangential augmentation added to T^(n) during this step (reset at commit, when
+  // T^(n+1) takes it over).
+  double multiplierNormal = 0;
+  double committedMultiplierNormal = 0;
+  Eigen::Vector3d tractionAugmentation = Eigen::Vector3d::Zero();
 };
 
 // NTS: one point per slave node, weighted by its tributary area in the reference configuration

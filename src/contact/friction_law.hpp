@@ -37,6 +37,15 @@ Scalar normalTraction(const Scalar& gap, double penalty) {
   return gap <= 0 ? Scalar(penalty * gap) : Scalar(0.0);
 }
 
+// Augmented Lagrangian: N = min(0, lambda_N + eps_N g) with the multiplier lambda_N <= 0 held
+// fixed during a Newton solve (Uzawa); lambda_N = 0 is eq. (62). dN/dg = eps_N where active, so
+// the paper's tangent parts keep their form with this N.
+template <class Scalar>
+Scalar augmentedNormalTraction(const Scalar& gap, double penalty, double multiplier) {
+  const Scalar augmented = multiplier + penalty * gap;
+  return augmented <= 0 ? augmented : Scalar(0.0);
+}
+
 template <class Scalar>
 struct TangentialTraction {
   Eigen::Matrix<Scalar, 2, 1> trialCovariant;  // (T^tr)_i, eq. (77)

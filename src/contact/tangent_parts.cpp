@@ -182,9 +182,15 @@ void paperTangent(const PointKinematics<double>& kin, const PointResponse<double
   const bool curved = kin.frame.curvature.norm() > kFlatTolerance * std::sqrt(scale);
   const bool connected =
       curved || kin.frame.christoffel[0].norm() + kin.frame.christoffel[1].norm() > kFlatTolerance;
+  // The rotational and curvature parts carry N = eps_N g; under the augmented Lagrangian
+  // N = lambda_N + eps_N g, which they take as the effective gap N / eps_N (with the plain
+  // penalty N == eps_N g exactly and the gap itself is used, bit for bit as before).
+  const double gap = response.normal == law.penaltyNormal * kin.gap
+                         ? kin.gap
+                         : response.normal / law.penaltyNormal;
   if (parts.normalMain) normalMain(c, law.penaltyNormal, K);
-  if (parts.normalRotational) normalRotational(c, law.penaltyNormal, kin.gap, K);
-  if (parts.normalCurvature && curved) normalCurvature(c, law.penaltyNormal, kin.gap, K);
+  if (parts.normalRotational) normalRotational(c, law.penaltyNormal, gap, K);
+  if (parts.normalCurvature && curved) normalCurvature(c, law.penaltyNormal, gap, K);
   if (!response.frictional) return;
   const Eigen::Vector2d& traction = response.tangential.covariant;
   if (response.state == ContactState::Stick) {

@@ -152,14 +152,28 @@ void handleContact(const ParsedLine& line, DeckState& state) {
          fmt::format("master and slave are both '{}'; a pair needs two different surfaces",
                      contact.slave));
   }
-  contact.penaltyNormal = line.number("eps_n");
+  // An omitted eps_n (eps_t when mu > 0) is chosen from the adjacent elements' stiffness when
+  // the model is built (model/automatic_penalty.cpp); 0 marks it as automatic.
+  if (line.given("eps_n")) contact.penaltyNormal = line.number("eps_n");
   contact.friction = line.number("mu");
-  if (contact.friction > 0 && !line.given("eps_t")) {
-    fail(line.where(), fmt::format("missing eps_t= (tangential penalty, a number > 0), required "
-                                   "when mu > 0 (mu={})",
-                                   line.value("mu").raw));
-  }
   if (line.given("eps_t")) contact.penaltyTangential = line.number("eps_t");
+  const bool automatic = !line.given("eps_n") || (contact.friction > 0 && !line.given("eps_t"));
+  if (line.given("eps_scale") && !automatic) {
+    fail(line.value("eps_scale").where,
+         "eps_scale= scales the automatic penalty, but eps_n= and eps_t= are both given");
+  }
+  contact.penaltyScale = line.number("eps_scale");
+  contact.enforcement = choiceValue(contactEnforcements(), line.text("enforcement"));
+  if (contact.enforcement == ContactSpec::Enforcement::Penalty) {
+    for (const char* name : {"aug_tol", "aug_max"}) {
+      if (line.given(name)) {
+        fail(line.value(name).where,
+             fmt::format("{}= applies to enforcement=augmented only", name));
+      }
+    }
+  }
+  contact.augmentationTolerance = line.number("aug_tol");
+  contact.maxAugmentations = line.integer("aug_max");
   if (contact.kind == ContactSpec::Kind::NodeToSegment && line.given("points")) {
     fail(line.value("points").where,
          "points= applies to sts and stas pairs only (nts uses the slave nodes)");

@@ -173,11 +173,25 @@ KeywordDecl contactKeyword() {
                .asRequired(),
            identifierValue("slave", "face set (sts, nts) or `rigid` surface name (stas)")
                .asRequired(),
-           numberValue("eps_n", "normal penalty eps_N")
-               .withRange(Range::greaterThan(0))
-               .asRequired(),
-           numberValue("eps_t", "tangential penalty eps_T (required when mu > 0)")
+           numberValue("eps_n",
+                       "normal penalty eps_N (omitted: automatic, from E/h of the adjacent "
+                       "elements, see notes)")
                .withRange(Range::greaterThan(0)),
+           numberValue("eps_t", "tangential penalty eps_T (omitted with mu > 0: automatic)")
+               .withRange(Range::greaterThan(0)),
+           numberValue("eps_scale", "factor on the automatic penalties")
+               .withRange(Range::greaterThan(0))
+               .withDefault("1"),
+           enumValue("enforcement", choiceNames(contactEnforcements()),
+                     "penalty as in the paper, or augmented Lagrangian (Uzawa updates per step)")
+               .withDefault("penalty"),
+           numberValue("aug_tol",
+                       "augmented: stop when every multiplier update is below aug_tol max|N|")
+               .withRange(Range::greaterThan(0))
+               .withDefault("1e-3"),
+           integerValue("aug_max", "augmented: Uzawa updates per step before the step fails")
+               .withRange(Range::between(1, true, 10000, true))
+               .withDefault("100"),
            numberValue("mu", "Coulomb friction coefficient (0: frictionless)")
                .withRange(Range::atLeast(0))
                .withDefault("0"),
@@ -196,7 +210,14 @@ KeywordDecl contactKeyword() {
           "`tangent=no_curvature` drops normal_curvature, stick_curvature, "
           "slide_curvature and slide_unsymmetric_curvature; `tangent=main` keeps only "
           "normal_main, stick_main and slide_constitutive. Give `tangent=` or `parts=`, "
-          "not both. The residual never depends on these choices.",
+          "not both. The residual never depends on these choices. Automatic penalty: "
+          "eps_N = eps_T = eps_scale * 10 * min over master and slave of the mean E/h of the "
+          "elements behind the surface faces (h: twice the distance from a face centre to its "
+          "element's centre along the face normal; stas: the master only); the values are "
+          "printed at the start and stored with the pair's output. enforcement=augmented "
+          "re-solves each step with updated multipliers lambda_N, lambda_T (N = min(0, "
+          "lambda_N + eps_N g), friction cone on the augmented traction) until the updates of "
+          "both are below aug_tol max|N|.",
       .handler = handleContact};
 }
 

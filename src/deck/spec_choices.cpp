@@ -39,6 +39,13 @@ const Choices<ContactSpec::Kind>& contactKinds() {
   return choices;
 }
 
+const Choices<ContactSpec::Enforcement>& contactEnforcements() {
+  static const Choices<ContactSpec::Enforcement> choices = {
+      {"penalty", ContactSpec::Enforcement::Penalty},
+      {"augmented", ContactSpec::Enforcement::Augmented}};
+  return choices;
+}
+
 const Choices<NewtonSpec::Criterion>& convergenceCriteria() {
   static const Choices<NewtonSpec::Criterion> choices = {
       {"energy", NewtonSpec::Criterion::Energy},

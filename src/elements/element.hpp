@@ -5,6 +5,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <limits>
 #include <memory>
 #include <span>
 #include <string>
@@ -39,6 +40,15 @@ class ElementKernel {
   virtual Vector6d cauchyStress(const Eigen::Matrix3Xd& X, const Eigen::Matrix3Xd& x,
                                 const Material& material,
                                 std::span<const double> history) const = 0;
+
+  // Stored strain energy of the element, integral of W(E) over the reference volume, for the
+  // energy balance of a run. NaN where not implemented (the solid-shells: their enhanced
+  // strains would have to enter W).
+  virtual double strainEnergy(const Eigen::Matrix3Xd& /*X*/, const Eigen::Matrix3Xd& /*x*/,
+                              const Material& /*material*/,
+                              std::span<const double> /*history*/) const {
+    return std::numeric_limits<double>::quiet_NaN();
+  }
 };
 
 std::unique_ptr<ElementKernel> makeHex8();

@@ -125,6 +125,17 @@ Vector6d hex8CauchyStress(const Hex8Nodes& X, const Hex8Nodes& x, const Material
   return voigtFromStress(kirchhoffIntegral / currentVolume);
 }
 
+double hex8StrainEnergy(const Hex8Nodes& X, const Hex8Nodes& x, const Material& material) {
+  if (!checkFinite(X, x).ok()) return std::numeric_limits<double>::quiet_NaN();
+  double energy = 0.0;
+  GaussPointState state;
+  for (int g = 0; g < kHex8GaussPoints; ++g) {
+    if (!gaussPointKinematics(X, x, g, state).ok()) return std::numeric_limits<double>::quiet_NaN();
+    energy += state.volume * material.strainEnergy(state.strain);
+  }
+  return energy;
+}
+
 namespace {
 
 class Hex8Kernel final : public ElementKernel {
@@ -154,6 +165,13 @@ class Hex8Kernel final : public ElementKernel {
                         std::span<const double> /*history*/) const override {
     requireEightNodes(X, x);
     return hex8CauchyStress(X, x, material);
+  }
+
+  double strainEnergy(const Eigen::Matrix3Xd& X, const Eigen::Matrix3Xd& x,
+                      const Material& material,
+                      std::span<const double> /*history*/) const override {
+    requireEightNodes(X, x);
+    return hex8StrainEnergy(X, x, material);
   }
 
  private:

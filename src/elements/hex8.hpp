@@ -29,5 +29,7 @@ ElementStatus hex8GaussPointStresses(const Hex8Nodes& X, const Hex8Nodes& x,
 // (tau = F S F^T = det F sigma). Returns quiet NaNs if the element cannot be evaluated, so that
 // output shows the failure instead of a plausible number.
 Vector6d hex8CauchyStress(const Hex8Nodes& X, const Hex8Nodes& x, const Material& material);
+// Integral of the stored energy W(E) over the element (2x2x2 Gauss, as the internal force).
+double hex8StrainEnergy(const Hex8Nodes& X, const Hex8Nodes& x, const Material& material);
 
 }  // namespace cc

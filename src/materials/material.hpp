@@ -5,6 +5,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <limits>
 #include <memory>
 #include <string>
 
@@ -20,6 +21,11 @@ class Material {
   // Returns false if the strain is outside the law's domain (e.g. det C <= 0 for neo-Hooke).
   virtual bool evaluate(const Vector6d& strainVoigt, Vector6d& stressVoigt,
                         Matrix6d* tangent) const = 0;
+  // Stored energy per unit reference volume W(E) (S = dW/dE), for the energy balance of a run
+  // (docs/output-format.md, /steps/<n>/energy). NaN for a law without a stored energy.
+  virtual double strainEnergy(const Vector6d& /*strainVoigt*/) const {
+    return std::numeric_limits<double>::quiet_NaN();
+  }
   // Small-strain Lame constants, for penalty defaults and reference solutions.
   virtual double youngsModulus() const = 0;
   virtual double poissonRatio() const = 0;

@@ -2,6 +2,7 @@
 // reference configuration: S = mu (I - C^-1) + lambda ln J C^-1 and its consistent tangent.
 #include <Eigen/LU>
 #include <cmath>
+#include <limits>
 #include <memory>
 
 #include "materials/isotropic.hpp"
@@ -49,6 +50,15 @@ class NeoHooke final : public Material {
       }
     }
     return true;
+  }
+
+  // W = mu/2 (tr C - 3) - mu ln J + lambda/2 (ln J)^2 (the law this file implements).
+  double strainEnergy(const Vector6d& strainVoigt) const override {
+    const Eigen::Matrix3d C = Eigen::Matrix3d::Identity() + 2.0 * strainFromVoigt(strainVoigt);
+    const double detC = C.determinant();
+    if (!(detC > 0.0)) return std::numeric_limits<double>::quiet_NaN();
+    const double logJ = 0.5 * std::log(detC);
+    return 0.5 * lame_.mu * (C.trace() - 3.0) - lame_.mu * logJ + 0.5 * lame_.lambda * logJ * logJ;
   }
 
   double youngsModulus() const override { return youngsModulus_; }

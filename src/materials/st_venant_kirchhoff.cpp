@@ -25,6 +25,11 @@ class StVenantKirchhoff final : public Material {
     return true;
   }
 
+  // W = 1/2 E : C : E (engineering shears: S_v . E_v = S : E).
+  double strainEnergy(const Vector6d& strainVoigt) const override {
+    return 0.5 * strainVoigt.dot(hooke_ * strainVoigt);
+  }
+
   double youngsModulus() const override { return youngsModulus_; }
   double poissonRatio() const override { return poissonRatio_; }
 

@@ -72,4 +72,17 @@ Eigen::Matrix<double, 6, Eigen::Dynamic> ElementSet::cauchyStress(
   return stress;
 }
 
+double ElementSet::strainEnergy(const Eigen::Matrix3Xd& referenceCoordinates,
+                                const Eigen::Matrix3Xd& currentCoordinates) const {
+  double energy = 0.0;
+  Eigen::Matrix3Xd reference, current;
+  for (Eigen::Index e = 0; e < connectivity_.rows(); ++e) {
+    gather(e, referenceCoordinates, reference);
+    gather(e, currentCoordinates, current);
+    std::span<const double> history(committedHistory_.data() + e * historySize_, historySize_);
+    energy += kernel_->strainEnergy(reference, current, *material_, history);
+  }
+  return energy;
+}
+
 }  // namespace cc

@@ -47,6 +47,8 @@ class ElementSet : public Contribution {
   // Volume-averaged Cauchy stress of every element at configuration x (Voigt, 6 x elements).
   Eigen::Matrix<double, 6, Eigen::Dynamic> cauchyStress(const Eigen::Matrix3Xd& reference,
                                                         const Eigen::Matrix3Xd& current) const;
+  // Stored strain energy of the set at configuration x (NaN if the kernel has none).
+  double strainEnergy(const Eigen::Matrix3Xd& reference, const Eigen::Matrix3Xd& current) const;
   int elementCount() const { return static_cast<int>(connectivity_.rows()); }
 
  private:

@@ -29,6 +29,22 @@ void Model::assemble(const AssemblyState& state, Eigen::VectorXd& internalForce,
   assembler_->assemble(state, internalForce, tangent);
 }
 
+NonlinearProblem::Augmentation Model::augment() {
+  Augmentation result;
+  for (auto& pair : contactPairs_) {
+    switch (pair->augment()) {
+      case contact::ContactPair::Augmentation::Converged:
+        break;
+      case contact::ContactPair::Augmentation::Updated:
+        result.status = Augmentation::Status::Updated;
+        break;
+      case contact::ContactPair::Augmentation::Failed:
+        return {Augmentation::Status::Failed, pair->augmentationMessage()};
+    }
+  }
+  return result;
+}
+
 void Model::commitStep() {
   for (auto& set : elementSets_) set->commitStep();
   for (auto& pair : contactPairs_) pair->commitStep();
@@ -87,7 +103,13 @@ StepRecord Model::stepRecord(int step, double time, int iterations, int cutbacks
     }
     record.stress = &stressBuffer_;
   }
-  for (const auto& pair : contactPairs_) record.contact.push_back(pair->record());
+  for (const auto& pair : contactPairs_) {
+    record.contact.push_back(pair->record());
+    // Mean power over the step accounted last (accountEnergy runs before the record is taken).
+    record.contact.back().dissipationPower =
+        energyStepLength_ > 0 ? pair->stepDissipation() / energyStepLength_ : 0.0;
+  }
+  record.energy = energy_;
   return record;
 }
 

@@ -33,6 +33,7 @@ class Model : public NonlinearProblem {
   void externalForces(double t, Eigen::VectorXd& force) const override;
   void assemble(const AssemblyState& state, Eigen::VectorXd& internalForce,
                 SystemMatrices* tangent) override;
+  Augmentation augment() override;
   void commitStep() override;
   void restoreStep() override;
   // Connected groups of elements, each named after its element blocks (model_state.cpp).
@@ -55,6 +56,12 @@ class Model : public NonlinearProblem {
   const AssemblyTimings& assemblyTimings() const { return assembler_->timings(); }
   int threads() const { return assembler_->threads(); }
 
+  // Energy balance (energy_account.cpp): called once per converged step, after commitStep, with
+  // the converged displacement and internal force; stepRecord reports the running balance.
+  void accountEnergy(double time, const Eigen::VectorXd& displacement,
+                     const Eigen::VectorXd& internalForce);
+  const EnergyRecord& energy() const { return energy_; }
+
   // The record of a converged step (reactions, set sums, stresses and contact as selected).
   // The returned record points into buffers owned by the model, valid until the next call.
   StepRecord stepRecord(int step, double time, int iterations, int cutbacks,
@@ -76,6 +83,11 @@ class Model : public NonlinearProblem {
   // Output buffers referenced by the last StepRecord.
   Eigen::Matrix3Xd displacementBuffer_, reactionBuffer_;
   Eigen::Matrix<double, 6, Eigen::Dynamic> stressBuffer_;
+  // Energy account: the state of the last accounted step (zero: the unloaded start).
+  EnergyRecord energy_;
+  double energyTime_ = 0;
+  double energyStepLength_ = 0;
+  Eigen::VectorXd energyDisplacement_, energyForce_;
 };
 
 // Loads the mesh and builds the model. Throws InputError naming the deck line of whatever does

@@ -2,6 +2,8 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <map>
 #include <set>
 
@@ -10,6 +12,7 @@
 #include "materials/material.hpp"
 #include "mesh/gmsh_import.hpp"
 #include "mesh/hex18.hpp"
+#include "model/automatic_penalty.hpp"
 #include "model/element_factory.hpp"
 #include "model/model.hpp"
 
@@ -168,6 +171,9 @@ contact::ContactPairConfig pairConfig(const ContactSpec& spec) {
   config.law = {.penaltyNormal = spec.penaltyNormal,
                 .penaltyTangential = spec.penaltyTangential,
                 .friction = spec.friction};
+  config.augmented = spec.enforcement == ContactSpec::Enforcement::Augmented;
+  config.augmentationTolerance = spec.augmentationTolerance;
+  config.maxAugmentations = spec.maxAugmentations;
   config.integrationPoints = spec.integrationPoints;
   config.tangentMode = spec.tangentMode == ContactSpec::TangentMode::Exact
                            ? contact::TangentMode::Exact
@@ -192,11 +198,40 @@ contact::SurfaceMotion surfaceMotion(const RigidSurfaceSpec& spec) {
   };
 }
 
+// The omitted penalties of a pair (automatic_penalty.hpp): the softer of its two surfaces.
+void setAutomaticPenalty(const ContactSpec& spec, const Mesh& mesh,
+                         const std::vector<double>& blockYoung,
+                         contact::ContactPairConfig& config) {
+  const bool normal = spec.penaltyNormal == 0;
+  const bool tangential = spec.friction > 0 && spec.penaltyTangential == 0;
+  if (!normal && !tangential) return;
+  double stiffness = surfaceStiffness(mesh, mesh.faceSets.at(spec.master), blockYoung);
+  if (spec.kind != ContactSpec::Kind::SegmentToAnalytical) {
+    stiffness =
+        std::min(stiffness, surfaceStiffness(mesh, mesh.faceSets.at(spec.slave), blockYoung));
+  }
+  if (!std::isfinite(stiffness) || !(stiffness > 0)) {
+    throw InputError(spec.where,
+                     fmt::format("contact '{}': no automatic penalty (no element with a Young's "
+                                 "modulus behind its surfaces); give eps_n= and eps_t=",
+                                 spec.name));
+  }
+  const double automatic = spec.penaltyScale * kAutomaticPenaltyFactor * stiffness;
+  if (normal) config.law.penaltyNormal = automatic;
+  if (tangential) config.law.penaltyTangential = automatic;
+  config.automaticPenalty = true;
+}
+
 std::unique_ptr<contact::ContactPair> makePair(const ContactSpec& spec, const ProblemSpec& problem,
-                                               const Mesh& mesh, const std::vector<bool>& active) {
+                                               const Mesh& mesh, const std::vector<bool>& active,
+                                               const std::vector<double>& blockYoung) {
   const FaceSet& master = requireFaceSet(mesh, spec.master, spec.where, "master");
   requireAttached(master, active, spec.where);
-  const contact::ContactPairConfig config = pairConfig(spec);
+  if (spec.kind != ContactSpec::Kind::SegmentToAnalytical) {
+    requireFaceSet(mesh, spec.slave, spec.where, "slave");
+  }
+  contact::ContactPairConfig config = pairConfig(spec);
+  setAutomaticPenalty(spec, mesh, blockYoung, config);
   if (spec.kind == ContactSpec::Kind::SegmentToAnalytical) {
     const auto rigid =
         std::find_if(problem.rigidSurfaces.begin(), problem.rigidSurfaces.end(),
@@ -228,6 +263,7 @@ std::unique_ptr<Model> buildModel(const ProblemSpec& spec) {
 
   std::set<int> usedBlocks;
   std::vector<bool> active(mesh.numNodes(), false);
+  std::vector<double> blockYoung(mesh.blocks.size(), std::numeric_limits<double>::quiet_NaN());
   for (const ElementBlockSpec& blockSpec : spec.elementBlocks) {
     const int block = prepareBlock(mesh, blockSpec);
     if (!usedBlocks.insert(block).second) {
@@ -235,6 +271,7 @@ std::unique_ptr<Model> buildModel(const ProblemSpec& spec) {
                        fmt::format("elements: group '{}' is already declared", blockSpec.group));
     }
     const ElementBlock& elements = mesh.blocks[block];
+    blockYoung[block] = materials.at(blockSpec.material)->youngsModulus();
     for (Eigen::Index e = 0; e < elements.connectivity.rows(); ++e) {
       for (Eigen::Index k = 0; k < elements.connectivity.cols(); ++k)
         active[elements.connectivity(e, k)] = true;
@@ -258,7 +295,7 @@ std::unique_ptr<Model> buildModel(const ProblemSpec& spec) {
   }
   model->boundaryConditions_.build(spec, mesh);
   for (const ContactSpec& c : spec.contacts) {
-    model->contactPairs_.push_back(makePair(c, spec, mesh, active));
+    model->contactPairs_.push_back(makePair(c, spec, mesh, active, blockYoung));
   }
 
   model->dofs_ = DofMap(active, model->boundaryConditions_.constrainedDofs(mesh.numNodes()));

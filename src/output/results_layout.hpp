@@ -29,6 +29,7 @@ inline constexpr const char* kStress = "stress";
 inline constexpr int kStressComponents = 6;  // Voigt order xx yy zz xy yz xz
 inline constexpr const char* kSetReactions = "set_reactions";
 inline constexpr const char* kContactGroup = "contact";
+inline constexpr const char* kEnergyGroup = "energy";
 inline constexpr const char* kTotalForce = "total_force";
 // 0..M-1 per contact pair: the vertex cells of its point cloud in the XDMF sidecar.
 inline constexpr const char* kVertexIds = "vertex_ids";

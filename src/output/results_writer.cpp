@@ -290,7 +290,21 @@ void ResultsWriter::writeStepGroup(const StepRecord& step, hid_t group) {
       h5::writeDoubles(file, group, layout::kSetReactions, setForces.data(), setNames.size(), 3);
   h5::writeAttribute(file, setReactions.get(), "names", setNames);
   if (selection.contact && !step.contact.empty()) writeContact(step, group);
+  writeEnergy(file, group, step.energy);
   if (step.restart != nullptr) writeRestart(file, group, *step.restart, !selection.displacement);
+}
+
+// The energy balance of the step (EnergyRecord) as attributes of /steps/<n>/energy.
+void ResultsWriter::writeEnergy(h5::FileRef file, hid_t stepGroup, const EnergyRecord& energy) {
+  h5::Group group = h5::createGroup(file, stepGroup, layout::kEnergyGroup);
+  const hid_t id = group.get();
+  h5::writeAttribute(file, id, "external_work", energy.externalWork);
+  h5::writeAttribute(file, id, "strain_energy", energy.strainEnergy);
+  h5::writeAttribute(file, id, "contact_energy", energy.contactEnergy);
+  h5::writeAttribute(file, id, "dissipation", energy.dissipation);
+  h5::writeAttribute(file, id, "dissipation_power", energy.dissipationPower);
+  h5::writeAttribute(file, id, "balance", energy.balance);
+  h5::writeAttribute(file, id, "quadrature_bound", energy.quadratureBound);
 }
 
 void ResultsWriter::writeContact(const StepRecord& step, hid_t stepGroup) {
@@ -316,6 +330,14 @@ void ResultsWriter::writeContact(const StepRecord& step, hid_t stepGroup) {
     h5::writeInts(file, id, "slave_nodes", pair.slaveNodes.data(), pair.slaveNodes.size(), 0);
     h5::writeDoubles(file, id, "slave_nodal_force", pair.slaveNodalForce.data(),
                      pair.slaveNodes.size(), 3);
+    h5::writeDoubles(file, id, "step_dissipation", pair.stepDissipation.data(), points, 0);
+    h5::writeAttribute(file, id, "eps_n", pair.penaltyNormal);
+    h5::writeAttribute(file, id, "eps_t", pair.penaltyTangential);
+    h5::writeAttribute(file, id, "eps_automatic", pair.automaticPenalty ? 1 : 0);
+    h5::writeAttribute(file, id, "penalty_energy", pair.penaltyEnergy);
+    h5::writeAttribute(file, id, "dissipation", pair.dissipation);
+    h5::writeAttribute(file, id, "dissipated_energy", pair.dissipatedEnergy);
+    h5::writeAttribute(file, id, "dissipation_power", pair.dissipationPower);
   }
 }
 

@@ -79,6 +79,7 @@ class ResultsWriter {
   struct State;
   void writeStepGroup(const StepRecord& step, hid_t group);
   void writeContact(const StepRecord& step, hid_t stepGroup);
+  static void writeEnergy(h5::FileRef file, hid_t stepGroup, const EnergyRecord& energy);
   std::unique_ptr<State> state_;
 };
 

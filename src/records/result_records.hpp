@@ -29,6 +29,34 @@ struct ContactPairRecord {
   // Nodal contact forces on the slave nodes (node index, force), for force-ratio plots.
   std::vector<int> slaveNodes;
   Eigen::Matrix3Xd slaveNodalForce;
+  // Energy of the pair (contact_pair_energy.cpp): stored penalty energy of the current state,
+  // sum over points of w (N^2 / (2 eps_N) + |T|^2 / (2 eps_T)); frictional energy dissipated in
+  // this step, sum of w mu |N| Delta lambda (the return mapping's slip, backward Euler); the
+  // dissipation summed over the run; and the mean dissipation power of the step.
+  Eigen::VectorXd stepDissipation;  // per point, this step
+  double penaltyNormal = 0;         // eps_N in use (given or automatic)
+  double penaltyTangential = 0;     // eps_T in use
+  bool automaticPenalty = false;
+  double penaltyEnergy = 0;
+  double dissipation = 0;       // this step
+  double dissipatedEnergy = 0;  // since the start of the run
+  double dissipationPower = 0;  // dissipation / dt of this step
+};
+
+// Global energy balance of a converged step (model/energy_account.cpp): work of the loads and
+// support reactions (trapezoidal rule over the steps) against the stored strain energy, the
+// stored penalty energy of the contact pairs and the frictional dissipation. balance =
+// externalWork - strainEnergy - contactEnergy - dissipation is zero up to the step-size error
+// of the trapezoidal rule and of the backward-Euler dissipation, of which quadratureBound =
+// sum over steps of |(F_{n+1} - F_n) . (u_{n+1} - u_n)| / 2 is the estimate.
+struct EnergyRecord {
+  double externalWork = 0;
+  double strainEnergy = 0;  // NaN if an element kernel has no stored energy (solid-shells)
+  double contactEnergy = 0;
+  double dissipation = 0;  // since the start
+  double dissipationPower = 0;
+  double balance = 0;
+  double quadratureBound = 0;
 };
 
 // What a run needs to continue from a converged step besides the displacement: the element
@@ -52,6 +80,7 @@ struct StepRecord {
   std::vector<std::pair<std::string, Eigen::Vector3d>> setReactions;  // summed per node set
   const Eigen::Matrix<double, 6, Eigen::Dynamic>* stress = nullptr;   // Cauchy, per element
   std::vector<ContactPairRecord> contact;
+  EnergyRecord energy;
   const RestartRecord* restart = nullptr;  // optional: written to /steps/<step>/restart
 };
 

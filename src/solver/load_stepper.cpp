@@ -138,6 +138,9 @@ bool LoadStepper::runPhase(const PhaseSpec& phase, double phaseStart, PhaseRun& 
       result = newton_->solve(retry, withLineSearch, run.displacement);
     }
     if (result.status == NewtonResult::Status::Converged) {
+      result = augmentStep(phase, step, result, run);
+    }
+    if (result.status == NewtonResult::Status::Converged) {
       position = target;
       if (!acceptStep(phase, result, targetTime, position >= phase.steps, control, run)) {
         return false;
@@ -147,6 +150,32 @@ bool LoadStepper::runPhase(const PhaseSpec& phase, double phaseStart, PhaseRun& 
     }
   }
   return true;
+}
+
+// Augmented-Lagrangian contact (Uzawa per step): while the problem updates multipliers, the step
+// is solved again at the same time from the displacement it converged to, with its relative
+// norms measured against the first solve's (the re-solve starts near equilibrium, and its own
+// first residual would set a tolerance below round-off); the iterations of all solves count
+// for the step. Without multipliers augment() converges at once and this is a
+// no-op.
+NewtonResult LoadStepper::augmentStep(const PhaseSpec& phase, const NewtonStep& step,
+                                      NewtonResult result, PhaseRun& run) {
+  NewtonStep resolve = step;
+  resolve.referenceResidual = newton_->firstResidual();
+  resolve.referenceEnergy = newton_->firstEnergy();
+  for (;;) {
+    const NonlinearProblem::Augmentation augmentation = problem_.augment();
+    using Status = NonlinearProblem::Augmentation::Status;
+    if (augmentation.status == Status::Converged) return result;
+    if (augmentation.status == Status::Failed) {
+      return {NewtonResult::Status::Failed, result.iterations, FailureKind::Diverged,
+              augmentation.message};
+    }
+    NewtonResult next = newton_->solve(resolve, phase.newton, run.displacement);
+    next.iterations += result.iterations;
+    if (next.status != NewtonResult::Status::Converged) return next;
+    result = next;
+  }
 }
 
 bool LoadStepper::acceptStep(const PhaseSpec& phase, const NewtonResult& result, double time,

@@ -59,6 +59,9 @@ class LoadStepper {
  private:
   struct PhaseRun;
   struct StepControl;
+  // Re-solves a converged step while the problem updates contact multipliers.
+  NewtonResult augmentStep(const PhaseSpec& phase, const NewtonStep& step, NewtonResult result,
+                           PhaseRun& run);
   // Each returns false when the run stops (summary_ says why).
   bool runPhase(const PhaseSpec& phase, double phaseStart, PhaseRun& run);
   bool acceptStep(const PhaseSpec& phase, const NewtonResult& result, double time, bool phaseEnd,

@@ -203,7 +203,10 @@ NewtonResult Newton::solve(const NewtonStep& step, const NewtonSpec& spec,
       return failed(iteration, failure.kind(), failure.what());
     }
     norms.residual = safeNorm(rhs);
-    if (iteration == 1) norms.firstResidual = norms.residual;
+    if (iteration == 1) {
+      norms.firstResidual = step.referenceResidual > 0 ? step.referenceResidual : norms.residual;
+      firstResidual_ = norms.firstResidual;
+    }
     if (!std::isfinite(norms.residual)) {
       return failed(iteration, FailureKind::NotFinite, "residual is not finite");
     }
@@ -261,7 +264,13 @@ NewtonResult Newton::solve(const NewtonStep& step, const NewtonSpec& spec,
       if (std::abs(norms.energyScale) < 900) norms.energyScale = 0;  // normal range: no scaling
     }
     norms.energy = scaledEnergy(du, rhs, norms.energyScale);
-    if (iteration == 1) norms.firstEnergy = norms.energy;
+    if (iteration == 1) {
+      // A reference energy from an earlier solve of this step is in unscaled units: used only
+      // when this one is unscaled too.
+      norms.firstEnergy =
+          step.referenceEnergy > 0 && norms.energyScale == 0 ? step.referenceEnergy : norms.energy;
+      firstEnergy_ = norms.firstEnergy;
+    }
     if (iteration == 1) applyPrescribed();
     const double fraction = spec.lineSearch ? lineSearch(step, du, rhs, displacement) : 1.0;
     addToFree(displacement, du, fraction);

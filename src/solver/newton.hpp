@@ -74,6 +74,11 @@ struct NewtonStep {
   int attempt = 0;          // earlier attempts of this step (cut-backs, line-search retries)
   double time = 0;          // t_{n+1}
   double previousTime = 0;  // t_n
+  // Augmented-Lagrangian re-solves of a converged step: the first residual and energy norms of
+  // the step's first solve, against which this solve's relative norms are measured (0: its
+  // own first iteration, as for every ordinary step).
+  double referenceResidual = 0;
+  double referenceEnergy = 0;
 };
 
 struct NewtonResult {
@@ -110,6 +115,9 @@ class Newton {
   // Internal force of the last assembly. A converged step always ends with an assembly (force
   // only) at its final displacement, so this is the internal force of the converged state.
   const Eigen::VectorXd& internalForce() const { return internalForce_; }
+  // The first residual and energy norms of the last solve (what its relative norms divide by).
+  double firstResidual() const { return firstResidual_; }
+  double firstEnergy() const { return firstEnergy_; }
   int assemblies() const { return assemblies_; }
   double assemblySeconds() const { return assemblySeconds_; }
   const TangentSolver& linearSolver() const { return linear_; }
@@ -131,6 +139,7 @@ class Newton {
   std::vector<TangentDumpRequest> dumps_;
   SystemMatrices tangent_;
   Eigen::VectorXd internalForce_;
+  double firstResidual_ = 0, firstEnergy_ = 0;
   Eigen::VectorXd externalForce_;
   Eigen::Matrix3Xd current_;
   Eigen::Matrix3Xd previous_;

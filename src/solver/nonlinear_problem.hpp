@@ -31,6 +31,15 @@ class NonlinearProblem {
   // Throws StepFailure when an element or contact point fails.
   virtual void assemble(const AssemblyState& state, Eigen::VectorXd& internalForce,
                         SystemMatrices* tangent) = 0;
+  // Augmented-Lagrangian contact: called when Newton converged, before commitStep. Updated: a
+  // contact pair changed its multipliers, solve the step again; Failed: a pair exceeded its
+  // number of updates (message says which). Problems without multipliers always converge.
+  struct Augmentation {
+    enum class Status { Converged, Updated, Failed };
+    Status status = Status::Converged;
+    std::string message;
+  };
+  virtual Augmentation augment() { return {}; }
   virtual void commitStep() = 0;   // the step converged: keep its history
   virtual void restoreStep() = 0;  // the step is cut back: forget the attempt
   // The bodies, for naming the rigid-body motions a singular tangent leaves free

@@ -108,12 +108,19 @@ struct ContactSpec {
   enum class TangentMode { Paper, Exact };
   std::string name;  // pair name used in output (default "pair<k>")
   Kind kind = Kind::SegmentToSegment;
-  std::string master;        // face set (STS/NTS); for STAS the deformable body's face set
-  std::string slave;         // face set (STS), node or face set (NTS); rigid surface name (STAS)
-  double penaltyNormal = 0;  // eps_N
-  double penaltyTangential = 0;  // eps_T
-  double friction = 0;           // mu >= 0; mu = 0 computes no tangential terms
-  int integrationPoints = 2;     // Gauss points per direction (STS, STAS)
+  std::string master;  // face set (STS/NTS); for STAS the deformable body's face set
+  std::string slave;   // face set (STS), node or face set (NTS); rigid surface name (STAS)
+  // Penalty: a plain penalty as in the paper; Augmented: augmented Lagrangian (Uzawa updates
+  // of the normal and tangential multipliers per load step, contact/augmentation.cpp).
+  enum class Enforcement { Penalty, Augmented };
+  double penaltyNormal = 0;      // eps_N; 0 = automatic (automatic_penalty.cpp)
+  double penaltyTangential = 0;  // eps_T; 0 with mu > 0 = automatic
+  double penaltyScale = 1;       // factor on the automatic penalties (eps_scale=)
+  Enforcement enforcement = Enforcement::Penalty;
+  double augmentationTolerance = 1e-3;  // aug_tol: multiplier update / max |N| to stop at
+  int maxAugmentations = 100;           // aug_max: Uzawa updates per step before giving up
+  double friction = 0;                  // mu >= 0; mu = 0 computes no tangential terms
+  int integrationPoints = 2;            // Gauss points per direction (STS, STAS)
   TangentMode tangentMode = TangentMode::Paper;
   TangentPartsSpec parts;
   SourceLocation where;

@@ -17,6 +17,7 @@ class RecordingObserver : public StepObserver {
   void stepConverged(int step, double time, int iterations, int cutbacks,
                      const Eigen::VectorXd& displacement, const Eigen::VectorXd& internalForce,
                      bool) override {
+    run_.model->accountEnergy(time, displacement, internalForce);
     const StepRecord record = run_.model->stepRecord(step, time, iterations, cutbacks, displacement,
                                                      internalForce, withStress_);
     RecordedStep copy;
@@ -29,6 +30,7 @@ class RecordingObserver : public StepObserver {
     copy.setReactions = record.setReactions;
     if (record.stress) copy.stress = *record.stress;
     copy.contact = record.contact;
+    copy.energy = record.energy;
     run_.steps.push_back(std::move(copy));
   }
 

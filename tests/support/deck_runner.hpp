@@ -23,6 +23,7 @@ struct RecordedStep {
   std::vector<std::pair<std::string, Eigen::Vector3d>> setReactions;
   Eigen::Matrix<double, 6, Eigen::Dynamic> stress;  // empty unless asked for
   std::vector<ContactPairRecord> contact;
+  EnergyRecord energy;
 
   Eigen::Vector3d setReaction(const std::string& name) const;
   const ContactPairRecord& pair(const std::string& name) const;

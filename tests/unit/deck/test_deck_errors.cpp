@@ -203,9 +203,11 @@ std::vector<ErrorCase> contactCases() {
        "contact: eps_n must be > 0, got 0"},
       {"NegativeTangentialPenalty", appended(pair + " eps_t=-5 mu=0.2"), 8, 51,
        "contact: eps_t must be > 0, got -5"},
-      {"FrictionNeedsTangentialPenalty", appended(pair + " mu=0.3 name=slide"), 8, 1,
-       "contact 'slide': missing eps_t= (tangential penalty, a number > 0), required when "
-       "mu > 0 (mu=0.3)"},
+      {"EpsScaleWithoutAutomaticPenalty", appended(pair + " eps_t=1 mu=0.3 eps_scale=2"), 8, 70,
+       "contact 'pair1': eps_scale= scales the automatic penalty, but eps_n= and eps_t= are "
+       "both given"},
+      {"AugmentationOptionWithPenalty", appended(pair + " aug_tol=1e-4"), 8, 53,
+       "contact 'pair1': aug_tol= applies to enforcement=augmented only"},
       {"TangentAndParts", appended(pair + " tangent=main parts=normal_main"), 8, 64,
        "contact 'pair1': give either tangent= or parts=, not both"},
       {"PointsOnNts", appended("contact nts master=top slave=bottom eps_n=1 points=3"), 8, 52,

@@ -1,0 +1,53 @@
+// Energy balance of a run (issue 16, part 4). Work of the loads and the support reactions,
+// W_ext = sum over steps of (F_n + F_{n+1}) . (u_{n+1} - u_n) / 2 with F = f_ext + reactions
+// (the trapezoidal rule), against the stored strain energy of the elements, the stored energy of
+// the contact penalty springs and the frictional dissipation:
+//   W_ext = E_strain + E_contact + D  (+ the step-size error of both time integrations).
+// The trapezoidal rule and the backward-Euler dissipation differ from the exact integrals by
+// O(step^2) per step; sum |(F_{n+1} - F_n) . Delta u| / 2, the difference between the
+// trapezoidal and a one-sided rule, measures that error and is reported with the balance.
+#include <cmath>
+
+#include "model/model.hpp"
+
+namespace cc {
+
+void Model::accountEnergy(double time, const Eigen::VectorXd& displacement,
+                          const Eigen::VectorXd& internalForce) {
+  const int n = mesh_.numNodes();
+  if (energyDisplacement_.size() != 3 * n) {
+    energyDisplacement_.setZero(3 * n);
+    energyForce_.setZero(3 * n);
+  }
+  // F = f_ext + reaction: the external force at the free dofs, the internal one (f_int - f_ext
+  // is the reaction) at the prescribed dofs.
+  Eigen::VectorXd force;
+  externalForces(time, force);
+  for (int dof : dofs_.prescribedDofs()) force[dof] = internalForce[dof];
+  const Eigen::VectorXd increment = displacement - energyDisplacement_;
+  energy_.externalWork += 0.5 * (force + energyForce_).dot(increment);
+  energy_.quadratureBound += 0.5 * std::abs((force - energyForce_).dot(increment));
+
+  const Eigen::Matrix3Xd current =
+      mesh_.coordinates + Eigen::Map<const Eigen::Matrix3Xd>(displacement.data(), 3, n);
+  energy_.strainEnergy = 0;
+  for (const auto& set : elementSets_)
+    energy_.strainEnergy += set->strainEnergy(mesh_.coordinates, current);
+  energy_.contactEnergy = 0;
+  double stepDissipation = 0;
+  energy_.dissipation = 0;
+  for (const auto& pair : contactPairs_) {
+    energy_.contactEnergy += pair->penaltyEnergy();
+    stepDissipation += pair->stepDissipation();
+    energy_.dissipation += pair->dissipatedEnergy();
+  }
+  energyStepLength_ = time - energyTime_;
+  energy_.dissipationPower = energyStepLength_ > 0 ? stepDissipation / energyStepLength_ : 0.0;
+  energy_.balance =
+      energy_.externalWork - energy_.strainEnergy - energy_.contactEnergy - energy_.dissipation;
+  energyTime_ = time;
+  energyDisplacement_ = displacement;
+  energyForce_ = force;
+}
+
+}  // namespace cc
