@@ -27,8 +27,9 @@ struct ContactPairConfig {
   TangentMode tangentMode = TangentMode::Paper;
   TangentParts parts;
   bool automaticPenalty = false;  // eps_N/eps_T chosen by the model builder (printed, stored)
-  // Augmented Lagrangian (contact_pair_augmentation.cpp): Uzawa updates per step until every
-  // multiplier update is below augmentationTolerance * max |N|.
+  // Augmented Lagrangian (contact_pair_augmentation.cpp): Uzawa updates per step until the
+  // multiplier updates, integrated over the surface, are below augmentationTolerance times the
+  // normal contact force.
   bool augmented = false;
   double augmentationTolerance = 1e-3;
   int maxAugmentations = 100;

@@ -4,15 +4,15 @@
 // traction the trial step starts from, Lambda_T = T^(n) carried to the current point plus A . rho_i
 // (eq. (51) applied to the augmentation A), carry them. After a converged solve:
 //   lambda_N <- N,  A <- A + (T - Lambda_T) at sticking points,
-// until max over points of |N - lambda_N| and over sticking points of |T - Lambda_T| is at most
-// aug_tol max |N|. For a point in contact |N - lambda_N| = eps_N |g| and for a sticking point
-// |T - Lambda_T| = eps_T |Delta rho_t|: the rule bounds the penetration and the slip under
-// stick by aug_tol max|N| / eps. A sliding point needs no tangential multiplier: its traction is
-// mu |N| (the cone acts on the augmented N) in the direction of the trial, so Lambda_T only
-// steers that direction.
-// Known limit (docs/verification/augmented_lagrangian.md): on 6.1(b) in sliding, Uzawa stalls
-// at an update of about 1e-3 max|N| whatever the step size, so the step fails after aug_max
-// updates and is cut back.
+// until the sum over points of w |N - lambda_N| plus, over sticking points, w |T - Lambda_T| is
+// at most aug_tol times the normal contact force sum w |N|. For a point in contact |N - lambda_N|
+// = eps_N |g| and for a sticking point |T - Lambda_T| = eps_T |Delta rho_t|: the rule bounds
+// the mean penetration and slip under stick by aug_tol (mean |N|) / eps. A sliding point needs no
+// tangential multiplier: its traction is mu |N| (the cone acts on the augmented N) in the direction
+// of the trial, so Lambda_T only steers that direction. Known limit
+// (docs/verification/augmented_lagrangian.md): on 6.1(b) in sliding, Uzawa stalls at an update of
+// about 1e-3 max|N| whatever the step size, so the step fails after aug_max updates and is cut
+// back.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -24,24 +24,25 @@ namespace cc::contact {
 
 ContactPair::Augmentation ContactPair::augment() {
   if (!config_.augmented) return Augmentation::Converged;
-  double largestTraction = 0, largestUpdate = 0;
+  // Integrated over the surface (weights w): the update of the contact force against the
+  // contact force. A rule on the largest point update stalled at the corners of a pressed
+  // block, where the pressure is singular and its multiplier converges slowest.
+  double force = 0, update = 0;
   for (const PairPoint& point : points_) {
     const PointTrial& t = point.trial;
-    const bool active = t.valid && t.state != ContactState::Open;
+    if (!t.valid) continue;
+    const bool active = t.state != ContactState::Open;
     const double normal = active ? t.normalTraction : 0.0;
-    largestTraction = std::max(largestTraction, std::abs(normal));
-    largestUpdate = std::max(largestUpdate, std::abs(normal - point.multiplierNormal));
-    if (t.valid && t.state == ContactState::Stick)
-      largestUpdate = std::max(largestUpdate, (t.traction - t.tractionBase).norm());
+    force += t.weight * std::abs(normal);
+    update += t.weight * std::abs(normal - point.multiplierNormal);
+    if (t.state == ContactState::Stick) update += t.weight * (t.traction - t.tractionBase).norm();
   }
-  if (largestUpdate <= config_.augmentationTolerance * largestTraction) {
-    return Augmentation::Converged;
-  }
+  if (update <= config_.augmentationTolerance * force) return Augmentation::Converged;
   if (augmentations_ >= config_.maxAugmentations) {
     lastAugmentationMessage_ = fmt::format(
         "contact pair '{}': {} augmentations did not reach aug_tol (multiplier update {:.3g} "
-        "of max |N| = {:.3g}); raise eps_n/eps_t or aug_max",
-        config_.name, augmentations_, largestUpdate, largestTraction);
+        "of the normal contact force {:.3g}); raise eps_n/eps_t or aug_max",
+        config_.name, augmentations_, update, force);
     return Augmentation::Failed;
   }
   for (PairPoint& point : points_) {

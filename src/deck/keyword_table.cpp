@@ -186,7 +186,8 @@ KeywordDecl contactKeyword() {
                      "penalty as in the paper, or augmented Lagrangian (Uzawa updates per step)")
                .withDefault("penalty"),
            numberValue("aug_tol",
-                       "augmented: stop when every multiplier update is below aug_tol max|N|")
+                       "augmented: stop when the multiplier updates, integrated over the surface, "
+                       "are below aug_tol times the normal contact force")
                .withRange(Range::greaterThan(0))
                .withDefault("1e-3"),
            integerValue("aug_max", "augmented: Uzawa updates per step before the step fails")
@@ -216,8 +217,9 @@ KeywordDecl contactKeyword() {
           "element's centre along the face normal; stas: the master only); the values are "
           "printed at the start and stored with the pair's output. enforcement=augmented "
           "re-solves each step with updated multipliers lambda_N, lambda_T (N = min(0, "
-          "lambda_N + eps_N g), friction cone on the augmented traction) until the updates of "
-          "both are below aug_tol max|N|.",
+          "lambda_N + eps_N g), friction cone on the augmented traction) until the updates "
+          "(normal, and tangential at sticking points), integrated over the surface, are "
+          "below aug_tol times the normal contact force.",
       .handler = handleContact};
 }
 

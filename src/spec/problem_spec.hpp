@@ -117,7 +117,7 @@ struct ContactSpec {
   double penaltyTangential = 0;  // eps_T; 0 with mu > 0 = automatic
   double penaltyScale = 1;       // factor on the automatic penalties (eps_scale=)
   Enforcement enforcement = Enforcement::Penalty;
-  double augmentationTolerance = 1e-3;  // aug_tol: multiplier update / max |N| to stop at
+  double augmentationTolerance = 1e-3;  // aug_tol: integrated multiplier update / contact force
   int maxAugmentations = 100;           // aug_max: Uzawa updates per step before giving up
   double friction = 0;                  // mu >= 0; mu = 0 computes no tangential terms
   int integrationPoints = 2;            // Gauss points per direction (STS, STAS)
