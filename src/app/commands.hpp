@@ -14,8 +14,10 @@ struct RunOptions {
   int threads = 0;     // 0 = OpenMP default
   std::string commandLine;
   bool quiet = false;
-  std::string restartFile;  // --restart: continue from a step of this results file
-  int restartStep = -1;     // --from-step; -1 = the last step with restart data
+  std::string restartFile;   // --restart: continue from a step of this results file
+  int restartStep = -1;      // --from-step; -1 = the last step with restart data
+  bool newtonLog = false;    // --newton-log: one line per Newton iteration
+  std::string checkTangent;  // --check-tangent STEP:ITERATION (diagnostics)
 };
 
 struct CompareOptionsCli {

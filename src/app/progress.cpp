@@ -6,8 +6,11 @@
 
 namespace cc::app {
 
-Progress::Progress(int plannedSteps, bool quiet)
-    : plannedSteps_(plannedSteps), quiet_(quiet), terminal_(isatty(fileno(stdout)) != 0) {}
+Progress::Progress(int plannedSteps, bool quiet, bool newtonLog)
+    : plannedSteps_(plannedSteps),
+      quiet_(quiet),
+      newtonLog_(newtonLog),
+      terminal_(isatty(fileno(stdout)) != 0) {}
 
 void Progress::printLive(const std::string& text) {
   fmt::print("\r{:<79}", text);
@@ -17,6 +20,15 @@ void Progress::printLive(const std::string& text) {
 
 void Progress::iteration(const IterationRecord& r) {
   lastRelativeResidual_ = r.relativeResidual;
+  if (newtonLog_) {
+    finish();
+    fmt::print(
+        "  step {} attempt {} iteration {}  t = {:.6g}  |R|/|R0| = {:.3e}  energy {:.3e}  "
+        "contact: {} active, {} changed state, {} changed segment\n",
+        r.step, r.attempt, r.iteration, r.time, r.relativeResidual, r.relativeEnergy,
+        r.contact.active, r.contact.state, r.contact.segment);
+    return;
+  }
   if (quiet_ || !terminal_) return;
   printLive(fmt::format("step {}/{}  t = {:.6g}  iteration {}  |R|/|R0| = {:.2e}  energy {:.2e}",
                         r.step, plannedSteps_, r.time, r.iteration, r.relativeResidual,

@@ -11,7 +11,7 @@ namespace cc::app {
 
 class Progress {
  public:
-  Progress(int plannedSteps, bool quiet);
+  Progress(int plannedSteps, bool quiet, bool newtonLog = false);
   void iteration(const IterationRecord& record);
   void stepConverged(int step, double time, int iterations, int cutbacks);
   void cutback(const CutbackRecord& record);
@@ -22,6 +22,7 @@ class Progress {
   void printLive(const std::string& text);
   int plannedSteps_;
   bool quiet_;
+  bool newtonLog_;
   bool terminal_;
   bool liveLineOpen_ = false;
   double lastRelativeResidual_ = 0;

@@ -176,12 +176,17 @@ int runCommand(const RunOptions& options) {
     std::cerr << "covcontact: error: " << error.what() << "\n";
     return kExitIo;
   }
-  Progress progress(plannedSteps(spec), options.quiet);
+  Progress progress(plannedSteps(spec), options.quiet, options.newtonLog);
   RunObserver observer(*model, writer, progress, selection.stress, references.get());
   stopSignal.store(false);
   std::signal(SIGINT, requestStop);
   std::signal(SIGTERM, requestStop);
   LoadStepper stepper(*model, observer, spec.phases);
+  if (!options.checkTangent.empty()) {
+    int step = 0, iteration = 0;
+    std::sscanf(options.checkTangent.c_str(), "%d:%d", &step, &iteration);  // validated by CLI
+    stepper.setTangentCheck(step, iteration);
+  }
   observer.attach(stepper);
   RunSummary summary;
   try {

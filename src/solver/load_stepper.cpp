@@ -73,6 +73,7 @@ SolverStatistics LoadStepper::statistics() const {
 RunSummary LoadStepper::run(const StartState& start) {
   summary_ = RunSummary{};
   newton_ = std::make_unique<Newton>(problem_, observer_, Newton::Clock::now());
+  newton_->setTangentCheck(tangentCheck_.first, tangentCheck_.second);
   const Eigen::Index size = 3 * static_cast<Eigen::Index>(problem_.dofMap().numNodes());
   PhaseRun run;
   run.displacement =
