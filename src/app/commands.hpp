@@ -18,6 +18,8 @@ struct RunOptions {
   int restartStep = -1;                  // --from-step; -1 = the last step with restart data
   std::vector<std::string> dumpTangent;  // --dump-tangent STEP:ITER (repeatable)
   std::string dumpDirectory;             // --dump-dir; empty = beside the results file
+  bool newtonLog = false;                // --newton-log: one line per Newton iteration
+  std::string checkTangent;              // --check-tangent STEP:ITERATION (diagnostics)
 };
 
 struct SolveDumpOptions {

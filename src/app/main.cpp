@@ -113,6 +113,23 @@ int main(int argc, char** argv) {
   runCommand->add_option("--threads", run.threads, "Assembly threads (default: all cores)")
       ->check(wholeNumberFromOne());
   runCommand->add_flag("-q,--quiet", run.quiet, "Print only the final summary");
+  runCommand->add_flag("--newton-log", run.newtonLog,
+                       "Print every Newton iteration: residual, energy, and the contact points "
+                       "that changed state or master segment since the previous iteration");
+  runCommand
+      ->add_option("--check-tangent", run.checkTangent,
+                   "STEP:ITERATION: compare the assembled tangent with central differences of "
+                   "the residual at that iterate (printed to stderr)")
+      ->check(CLI::Validator(
+          [](std::string& value) {
+            int step = 0, iteration = 0;
+            char extra = 0;
+            return std::sscanf(value.c_str(), "%d:%d%c", &step, &iteration, &extra) == 2 &&
+                           step > 0 && iteration > 0
+                       ? std::string()
+                       : std::string("expected STEP:ITERATION, two positive integers");
+          },
+          "STEP:ITERATION"));
   auto* restartOption =
       runCommand
           ->add_option("--restart", run.restartFile,

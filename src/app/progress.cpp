@@ -26,8 +26,11 @@ void printOut(const std::string& text) {
                   std::strerror(errno)));
 }
 
-Progress::Progress(int plannedSteps, bool quiet)
-    : plannedSteps_(plannedSteps), quiet_(quiet), terminal_(isatty(fileno(stdout)) != 0) {}
+Progress::Progress(int plannedSteps, bool quiet, bool newtonLog)
+    : plannedSteps_(plannedSteps),
+      quiet_(quiet),
+      newtonLog_(newtonLog),
+      terminal_(isatty(fileno(stdout)) != 0) {}
 
 void Progress::printLive(const std::string& text) {
   printOut(fmt::format("\r{:<79}", text));
@@ -36,6 +39,15 @@ void Progress::printLive(const std::string& text) {
 
 void Progress::iteration(const IterationRecord& r) {
   lastRelativeResidual_ = r.relativeResidual;
+  if (newtonLog_) {
+    finish();
+    printOut(fmt::format(
+        "  step {} attempt {} iteration {}  t = {:.6g}  |R|/|R0| = {:.3e}  energy {:.3e}  "
+        "contact: {} active, {} changed state, {} changed segment\n",
+        r.step, r.attempt, r.iteration, r.time, r.relativeResidual, r.relativeEnergy,
+        r.contact.active, r.contact.state, r.contact.segment));
+    return;
+  }
   if (quiet_ || !terminal_) return;
   printLive(fmt::format("step {}/{}  t = {:.6g}  iteration {}  |R|/|R0| = {:.2e}  energy {:.2e}",
                         r.step, plannedSteps_, r.time, r.iteration, r.relativeResidual,
@@ -65,11 +77,10 @@ void Progress::note(const std::string& line) {
   finish();
   // The solver choice is part of the run's report; a fallback is a warning, like a cut-back.
   if (line.rfind("linear solver: ", 0) == 0) {
-    if (!quiet_) fmt::print("{}\n", line);
+    if (!quiet_) printOut(line + "\n");
   } else {
-    fmt::print(stderr, "{}\n", line);
+    printErr(line + "\n");
   }
-  std::fflush(stdout);
 }
 
 void Progress::finish() {

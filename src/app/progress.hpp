@@ -18,7 +18,7 @@ void printErr(const std::string& text);
 
 class Progress {
  public:
-  Progress(int plannedSteps, bool quiet);
+  Progress(int plannedSteps, bool quiet, bool newtonLog = false);
   void iteration(const IterationRecord& record);
   void stepConverged(int step, double time, int iterations, int cutbacks);
   void cutback(const CutbackRecord& record);
@@ -31,6 +31,7 @@ class Progress {
   void printLive(const std::string& text);
   int plannedSteps_;
   bool quiet_;
+  bool newtonLog_;
   bool terminal_;
   bool liveLineOpen_ = false;
   double lastRelativeResidual_ = 0;

@@ -208,7 +208,7 @@ int runCommand(const RunOptions& options) {
     std::cerr << "covcontact: error: " << error.what() << "\n";
     return kExitIo;
   }
-  Progress progress(plannedSteps(spec), options.quiet);
+  Progress progress(plannedSteps(spec), options.quiet, options.newtonLog);
   RunObserver observer(*model, writer, progress, selection.stress, references.get());
   stopSignal.store(false);
   std::signal(SIGINT, requestStop);
@@ -228,6 +228,11 @@ int runCommand(const RunOptions& options) {
     dumps.push_back(dump);
   }
   LoadStepper stepper(*model, observer, spec.phases, spec.linearSolver, dumps);
+  if (!options.checkTangent.empty()) {
+    int step = 0, iteration = 0;
+    std::sscanf(options.checkTangent.c_str(), "%d:%d", &step, &iteration);  // validated by CLI
+    stepper.setTangentCheck(step, iteration);
+  }
   observer.attach(stepper);
   RunSummary summary;
   try {

@@ -60,6 +60,10 @@ class ContactPair : public Contribution {
   void commitStep() override;
   void restoreStep() override;
 
+  // Points whose trial state or master segment changed since the last call, and the points in
+  // contact (contact_pair_diagnostics.cpp; Newton logs it per iteration).
+  ContactChanges takeChanges();
+
   // Output of the last evaluated (after commit: converged) state.
   ContactPairRecord record() const;
 
@@ -104,6 +108,9 @@ class ContactPair : public Contribution {
   ContactPairConfig config_;
   SegmentTracker tracker_;
   std::vector<PairPoint> points_;
+  // What takeChanges() saw last, per point.
+  std::vector<ContactState> countedState_;
+  std::vector<int> countedSegment_;
   std::vector<int> moved_;  // scratch of searchSegments
   std::uint64_t topologyVersion_ = 1;
   // STAS

@@ -57,18 +57,21 @@ KeywordDecl meshKeyword() {
 }
 
 KeywordDecl materialKeyword() {
-  return {.name = "material",
-          .summary = "A named hyperelastic material.",
-          .positionals = {identifierValue("NAME", "material name, used by `elements material=`"),
-                          enumValue("MODEL", choiceNames(materialModels()),
-                                    "St. Venant-Kirchhoff or compressible neo-Hooke")},
-          .parameters =
-              {numberValue("E", "Young's modulus").withRange(Range::greaterThan(0)).asRequired(),
-               numberValue("nu", "Poisson's ratio")
-                   .withRange(Range::between(-1, false, 0.5, false))
-                   .asRequired()},
-          .itemName = "NAME",
-          .handler = handleMaterial};
+  return {
+      .name = "material",
+      .summary = "A named hyperelastic material.",
+      .positionals = {identifierValue("NAME", "material name, used by `elements material=`"),
+                      enumValue(
+                          "MODEL", choiceNames(materialModels()),
+                          "St. Venant-Kirchhoff, compressible neo-Hooke, or decoupled neo-Hooke "
+                          "(Abaqus/CalculiX form)")},
+      .parameters =
+          {numberValue("E", "Young's modulus").withRange(Range::greaterThan(0)).asRequired(),
+           numberValue("nu", "Poisson's ratio")
+               .withRange(Range::between(-1, false, 0.5, false))
+               .asRequired()},
+      .itemName = "NAME",
+      .handler = handleMaterial};
 }
 
 KeywordDecl elementsKeyword() {

@@ -5,7 +5,9 @@ namespace cc::deck {
 
 const Choices<MaterialSpec::Model>& materialModels() {
   static const Choices<MaterialSpec::Model> choices = {
-      {"svk", MaterialSpec::Model::StVenantKirchhoff}, {"neohooke", MaterialSpec::Model::NeoHooke}};
+      {"svk", MaterialSpec::Model::StVenantKirchhoff},
+      {"neohooke", MaterialSpec::Model::NeoHooke},
+      {"neohooke_decoupled", MaterialSpec::Model::NeoHookeDecoupled}};
   return choices;
 }
 

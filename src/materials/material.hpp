@@ -38,5 +38,9 @@ Eigen::Matrix3d stressFromVoigt(const Vector6d& s);
 
 std::unique_ptr<Material> makeStVenantKirchhoff(double youngsModulus, double poissonRatio);
 std::unique_ptr<Material> makeNeoHooke(double youngsModulus, double poissonRatio);
+// Decoupled neo-Hooke, W = C10 (I1bar - 3) + (J - 1)^2 / D1 (Abaqus/CalculiX), from C10 and D1
+// or from the small-strain E and nu (C10 = mu/2, D1 = 2/K).
+std::unique_ptr<Material> makeNeoHookeDecoupled(double c10, double d1);
+std::unique_ptr<Material> makeNeoHookeDecoupledFromYoung(double youngsModulus, double poissonRatio);
 
 }  // namespace cc

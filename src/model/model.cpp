@@ -50,6 +50,12 @@ void Model::commitStep() {
   for (auto& pair : contactPairs_) pair->commitStep();
 }
 
+ContactChanges Model::takeContactChanges() {
+  ContactChanges changes;
+  for (auto& pair : contactPairs_) changes += pair->takeChanges();
+  return changes;
+}
+
 void Model::restoreStep() {
   for (auto& set : elementSets_) set->restoreStep();
   for (auto& pair : contactPairs_) pair->restoreStep();

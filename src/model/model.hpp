@@ -38,6 +38,7 @@ class Model : public NonlinearProblem {
   void restoreStep() override;
   // Connected groups of elements, each named after its element blocks (model_state.cpp).
   std::vector<BodyNodes> bodies() const override;
+  ContactChanges takeContactChanges() override;
 
   // Restart (model_state.cpp): the committed element and contact history (displacement and
   // step size are left to the caller), and its restoration. restoreHistory throws

@@ -39,6 +39,8 @@ std::shared_ptr<const Material> makeMaterial(const MaterialSpec& spec) {
       return makeStVenantKirchhoff(spec.youngsModulus, spec.poissonRatio);
     case MaterialSpec::Model::NeoHooke:
       return makeNeoHooke(spec.youngsModulus, spec.poissonRatio);
+    case MaterialSpec::Model::NeoHookeDecoupled:
+      return makeNeoHookeDecoupledFromYoung(spec.youngsModulus, spec.poissonRatio);
   }
   throw InputError(spec.where, "unknown material model");
 }

@@ -84,6 +84,18 @@ struct StepRecord {
   const RestartRecord* restart = nullptr;  // optional: written to /steps/<step>/restart
 };
 
+// Contact points whose state (open/stick/slip) or master segment differs from the last Newton
+// iteration (diagnostics of non-smooth residuals, issue 14), and the points in contact.
+struct ContactChanges {
+  int state = 0;
+  int segment = 0;
+  int active = 0;
+  ContactChanges& operator+=(const ContactChanges& other) {
+    state += other.state, segment += other.segment, active += other.active;
+    return *this;
+  }
+};
+
 struct IterationRecord {
   int step = 0;       // the step being solved (1-based, as it will be numbered if it converges)
   int attempt = 0;    // 0 for the first try, k after k cut-backs of this step
@@ -94,6 +106,7 @@ struct IterationRecord {
   double energy = 0;
   double relativeEnergy = 0;
   double wallSeconds = 0;  // since the start of the run
+  ContactChanges contact;  // since the previous iteration (iteration 1: since the last step's)
 };
 
 struct CutbackRecord {

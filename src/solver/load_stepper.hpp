@@ -55,6 +55,8 @@ class LoadStepper {
   // The step size of the next step; during StepObserver::stepConverged, the one that follows
   // the converged step (what a restart from that step needs).
   StepSize nextStepSize() const { return nextStepSize_; }
+  // Diagnostics: see Newton::setTangentCheck.
+  void setTangentCheck(int step, int iteration) { tangentCheck_ = {step, iteration}; }
 
  private:
   struct PhaseRun;
@@ -78,6 +80,7 @@ class LoadStepper {
   RunSummary summary_;
   StepSize nextStepSize_;
   bool resumeStepSize_ = false;  // a restart's step size still waits for its phase
+  std::pair<int, int> tangentCheck_{-1, -1};
 };
 
 }  // namespace cc

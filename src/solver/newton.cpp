@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 
 #include "solver/rigid_body_modes.hpp"
@@ -170,6 +171,45 @@ double Newton::lineSearch(const NewtonStep& step, const Eigen::VectorXd& du,
   return bestFraction;
 }
 
+// The assembled tangent K_ff against central differences of the assembled free residual,
+// (R(u + h v) - R(u - h v)) / 2h, along the Newton direction and two fixed pseudo-random
+// directions, for three step sizes (printed to stderr). An inconsistent tangent shows an error
+// independent of h; a non-smooth residual (contact points changing state or segment between
+// u - h v and u + h v, counted) an error that does not fall with h.
+void Newton::checkTangent(const NewtonStep& step, const Eigen::VectorXd& du,
+                          const Eigen::VectorXd& displacement) {
+  const Eigen::Index n = du.size();
+  std::vector<std::pair<std::string, Eigen::VectorXd>> directions{{"newton", du}};
+  std::srand(14);  // fixed directions: runs with different tangents see the same ones
+  directions.emplace_back("random1", Eigen::VectorXd::Random(n));
+  directions.emplace_back("random2", Eigen::VectorXd::Random(n));
+  double scale = 1e-3;
+  for (int dof : problem_.dofMap().freeDofs()) scale = std::max(scale, std::abs(displacement[dof]));
+  (void)problem_.takeContactChanges();
+  for (const auto& [name, v] : directions) {
+    const Eigen::VectorXd Kv = tangent_.free * v;
+    for (const double relative : {1e-4, 1e-6, 1e-8}) {
+      const double h = relative * scale / v.cwiseAbs().maxCoeff();
+      Eigen::VectorXd plus = displacement, minus = displacement;
+      addToFree(plus, v, h);
+      addToFree(minus, v, -h);
+      assembleAt(plus, step, false);
+      (void)problem_.takeContactChanges();
+      const Eigen::VectorXd rPlus = freeResidual();
+      assembleAt(minus, step, false);
+      const ContactChanges changed = problem_.takeContactChanges();
+      const Eigen::VectorXd fd = (rPlus - freeResidual()) / (2 * h);
+      fmt::print(stderr,
+                 "tangent check: step {} iteration {} direction {} h = {:.1e} |u|: |K v - fd| / "
+                 "|fd| = {:.3e} (contact points changing state {} / segment {} between u -+ h v)\n",
+                 step.step, tangentCheck_.iteration, name, relative, (Kv - fd).norm() / fd.norm(),
+                 changed.state, changed.segment);
+    }
+  }
+  assembleAt(displacement, step, false);  // the trial state of the iterate again
+  (void)problem_.takeContactChanges();
+}
+
 NewtonResult Newton::solve(const NewtonStep& step, const NewtonSpec& spec,
                            Eigen::VectorXd& displacement) {
   const DofMap& dofs = problem_.dofMap();
@@ -193,8 +233,10 @@ NewtonResult Newton::solve(const NewtonStep& step, const NewtonSpec& spec,
   double previousResidual = 0, forcing = kForcingMax;
   for (int iteration = 1; iteration <= spec.maxIterations; ++iteration) {
     Eigen::VectorXd rhs;
+    ContactChanges changes;
     try {
       assembleAt(displacement, step, true);
+      changes = problem_.takeContactChanges();
       rhs = -freeResidual();
       if (iteration == 1 && dofs.numPrescribed() > 0) {
         rhs.noalias() -= tangent_.coupling * prescribedIncrement;
@@ -255,6 +297,9 @@ NewtonResult Newton::solve(const NewtonStep& step, const NewtonSpec& spec,
                     describeSingularStiffness(tangent_.free, dofs, current_, problem_.bodies()) +
                         " (" + failure.what() + ")");
     }
+    if (tangentCheck_.step == step.step && tangentCheck_.iteration == iteration) {
+      checkTangent(step, du, displacement);
+    }
     previousResidual = norms.residual;
     if (iteration == 1) {
       // The unit of this step's energies: 2^-scale near the first energy (an exact power of two).
@@ -277,7 +322,7 @@ NewtonResult Newton::solve(const NewtonStep& step, const NewtonSpec& spec,
 
     observer_.iteration({step.step, step.attempt, iteration, step.time, norms.residual,
                          norms.relativeResidual(), norms.unscaledEnergy(), norms.relativeEnergy(),
-                         secondsSince(runStart_)});
+                         secondsSince(runStart_), changes});
     if (atRoundoff || convergedAfterSolve(spec, norms, iteration)) {
       // Evaluate once more at the converged displacement, so that the internal force (the
       // reactions) and every contribution's trial state (the contact history to be committed)

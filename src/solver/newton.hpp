@@ -121,6 +121,9 @@ class Newton {
   int assemblies() const { return assemblies_; }
   double assemblySeconds() const { return assemblySeconds_; }
   const TangentSolver& linearSolver() const { return linear_; }
+  // Diagnostics (covcontact run --check-tangent): at this step and iteration, compare the
+  // assembled tangent with central differences of the residual (printed to stderr).
+  void setTangentCheck(int step, int iteration) { tangentCheck_ = {step, iteration}; }
 
  private:
   void assembleAt(const Eigen::VectorXd& displacement, const NewtonStep& step, bool withTangent);
@@ -131,6 +134,8 @@ class Newton {
   double lineSearch(const NewtonStep& step, const Eigen::VectorXd& du, const Eigen::VectorXd& rhs,
                     Eigen::VectorXd& displacement);
   void addToFree(Eigen::VectorXd& displacement, const Eigen::VectorXd& du, double scale) const;
+  void checkTangent(const NewtonStep& step, const Eigen::VectorXd& du,
+                    const Eigen::VectorXd& displacement);
 
   NonlinearProblem& problem_;
   StepObserver& observer_;
@@ -145,6 +150,9 @@ class Newton {
   Eigen::Matrix3Xd previous_;
   int assemblies_ = 0;
   double assemblySeconds_ = 0;
+  struct {
+    int step = -1, iteration = -1;
+  } tangentCheck_;
 };
 
 }  // namespace cc

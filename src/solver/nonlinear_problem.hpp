@@ -45,6 +45,8 @@ class NonlinearProblem {
   // The bodies, for naming the rigid-body motions a singular tangent leaves free
   // (solver/rigid_body_modes.hpp). Empty: all nodes form one body.
   virtual std::vector<BodyNodes> bodies() const { return {}; }
+  // Contact points that changed state or master segment since the last call (diagnostics).
+  virtual ContactChanges takeContactChanges() { return {}; }
 };
 
 // Receives what the stepper produces; the model and the results writer live behind it.

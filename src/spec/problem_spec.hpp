@@ -32,7 +32,7 @@ struct MeshSpec {
 };
 
 struct MaterialSpec {
-  enum class Model { StVenantKirchhoff, NeoHooke };
+  enum class Model { StVenantKirchhoff, NeoHooke, NeoHookeDecoupled };
   std::string name;
   Model model = Model::StVenantKirchhoff;
   double youngsModulus = 0;

@@ -73,8 +73,9 @@ std::vector<ErrorCase> parameterCases() {
       {"MissingRequiredParameter", appended("material soft svk nu=0.3"), 8, 1,
        "material 'soft': missing required parameter E= (Young's modulus, a number > 0)"},
       {"MissingPositional", appended("material soft"), 8, 14,
-       "material 'soft': missing MODEL (one of svk or neohooke: St. Venant-Kirchhoff or "
-       "compressible neo-Hooke)"},
+       "material 'soft': missing MODEL (one of svk, neohooke or neohooke_decoupled: St. "
+       "Venant-Kirchhoff, compressible neo-Hooke, or decoupled neo-Hooke (Abaqus/CalculiX "
+       "form))"},
       {"MissingSetBeforeClause", appended("fix ux"), 8, 5,
        "fix: missing SET before 'ux' (gmsh physical group (its nodes))"},
       {"UnexpectedWord", appended("fix top ux sideways"), 8, 12,

@@ -51,7 +51,9 @@ INSTANTIATE_TEST_SUITE_P(
     Materials, MaterialLaw,
     ::testing::Values(
         NamedMaterial{"svk", [] { return cc::makeStVenantKirchhoff(kYoung, kPoisson); }},
-        NamedMaterial{"neo_hooke", [] { return cc::makeNeoHooke(kYoung, kPoisson); }}),
+        NamedMaterial{"neo_hooke", [] { return cc::makeNeoHooke(kYoung, kPoisson); }},
+        NamedMaterial{"neo_hooke_decoupled",
+                      [] { return cc::makeNeoHookeDecoupledFromYoung(kYoung, kPoisson); }}),
     [](const auto& info) { return std::string(info.param.name); });
 
 Matrix3d rotation(double angleDegrees, const Vector3d& axis) {
@@ -125,6 +127,12 @@ double strainEnergy(const std::string& name, const cc::Vector6d& e) {
   if (name == "svk")
     return 0.5 * kLambda * E.trace() * E.trace() + kMu * (E.array().square().sum());
   const Matrix3d C = Matrix3d::Identity() + 2 * E;
+  if (name == "neo_hooke_decoupled") {
+    // W = C10 (J^(-2/3) I1 - 3) + (J - 1)^2 / D1 with C10 = mu/2, D1 = 2/K.
+    const double J = std::sqrt(C.determinant());
+    const double bulk = kLambda + 2 * kMu / 3;
+    return 0.5 * kMu * (std::pow(J, -2.0 / 3.0) * C.trace() - 3) + 0.5 * bulk * (J - 1) * (J - 1);
+  }
   const double logJ = 0.5 * std::log(C.determinant());
   return 0.5 * kMu * (C.trace() - 3) - kMu * logJ + 0.5 * kLambda * logJ * logJ;
 }
@@ -245,6 +253,77 @@ TEST(NeoHooke, EquibiaxialStressAtLargeStretch) {
   EXPECT_NEAR(stress[0], inPlaneStress, kRoundOff * inPlaneStress);
   EXPECT_NEAR(stress[1], inPlaneStress, kRoundOff * inPlaneStress);
   EXPECT_NEAR(stress[2], 0.0, kRoundOff * inPlaneStress);
+}
+
+// Decoupled neo-Hooke, principal Cauchy stress with k = 2/D1 = K:
+// sigma_i = 2 C10 J^(-5/3) (l_i^2 - I1/3) + K (J - 1).
+const double kBulk = kLambda + 2 * kMu / 3;
+double decoupledPrincipalCauchy(const Vector3d& stretches, int i) {
+  const double J = stretches.prod();
+  const double I1 = stretches.squaredNorm();
+  return kMu * std::pow(J, -5.0 / 3.0) * (stretches[i] * stretches[i] - I1 / 3) + kBulk * (J - 1);
+}
+
+TEST(NeoHookeDecoupled, UniaxialStressAtLargeStretch) {
+  const auto material = cc::makeNeoHookeDecoupledFromYoung(kYoung, kPoisson);
+  for (const double axialStretch : {2.0, 0.6}) {
+    const double lateral =
+        bisect([&](double l) { return decoupledPrincipalCauchy(Vector3d(axialStretch, l, l), 1); },
+               0.2, 5.0);
+    const Vector3d stretches(axialStretch, lateral, lateral);
+    const double J = stretches.prod();
+    const cc::Vector6d stress =
+        stressOf(*material, cc::greenLagrangeVoigt(stretches.asDiagonal().toDenseMatrix()));
+    // S_1 = J sigma_1 / l_1^2.
+    const double axialStress =
+        J * decoupledPrincipalCauchy(stretches, 0) / (axialStretch * axialStretch);
+    EXPECT_NEAR(stress[0], axialStress, kRoundOff * std::abs(axialStress));
+    EXPECT_NEAR(stress[1], 0.0, kRoundOff * std::abs(axialStress));
+    EXPECT_NEAR(stress[2], 0.0, kRoundOff * std::abs(axialStress));
+    EXPECT_LT(stress.tail<3>().norm(), kRoundOff * std::abs(axialStress));
+  }
+}
+
+// Pure dilatation F = l I: no isochoric stress, sigma = K (J - 1) I, J = l^3.
+TEST(NeoHookeDecoupled, HydrostaticStressOfPureDilatation) {
+  const auto material = cc::makeNeoHookeDecoupledFromYoung(kYoung, kPoisson);
+  for (const double l : {1.3, 0.8}) {
+    const double J = l * l * l;
+    const cc::Vector6d stress =
+        stressOf(*material, cc::greenLagrangeVoigt(l * Matrix3d::Identity()));
+    const double expected = J * kBulk * (J - 1) / (l * l);  // S = J sigma / l^2
+    for (int i = 0; i < 3; ++i) EXPECT_NEAR(stress[i], expected, kRoundOff * std::abs(expected));
+    EXPECT_LT(stress.tail<3>().norm(), kRoundOff * std::abs(expected));
+  }
+}
+
+// Simple shear x = X + gamma Y (J = 1): sigma_12 = mu gamma at any gamma (the Mooney-Rivlin
+// result with C01 = 0), and the normal stress difference sigma_11 - sigma_22 = mu gamma^2.
+TEST(NeoHookeDecoupled, SimpleShearIsLinearInShear) {
+  const auto material = cc::makeNeoHookeDecoupledFromYoung(kYoung, kPoisson);
+  const double gamma = 0.8;
+  Matrix3d F = Matrix3d::Identity();
+  F(0, 1) = gamma;
+  const Matrix3d sigma =
+      F * cc::stressFromVoigt(stressOf(*material, cc::greenLagrangeVoigt(F))) * F.transpose();
+  EXPECT_NEAR(sigma(0, 1), kMu * gamma, kRoundOff * kMu);
+  EXPECT_NEAR(sigma(0, 0) - sigma(1, 1), kMu * gamma * gamma, kRoundOff * kMu);
+}
+
+TEST(NeoHookeDecoupled, FromC10D1HasTheSmallStrainConstants) {
+  const auto fromYoung = cc::makeNeoHookeDecoupledFromYoung(kYoung, kPoisson);
+  const auto fromC10 = cc::makeNeoHookeDecoupled(kMu / 2, 2 / kBulk);
+  EXPECT_NEAR(fromC10->youngsModulus(), kYoung, kRoundOff * kYoung);
+  EXPECT_NEAR(fromC10->poissonRatio(), kPoisson, kRoundOff);
+  cc::Matrix6d a, b;
+  cc::Vector6d s;
+  const cc::Vector6d strain = cc::greenLagrangeVoigt(deformationGradients()[1]);
+  ASSERT_TRUE(fromYoung->evaluate(strain, s, &a));
+  ASSERT_TRUE(fromC10->evaluate(strain, s, &b));
+  EXPECT_LT((a - b).norm(), kRoundOff * a.norm());
+  EXPECT_THROW(cc::makeNeoHookeDecoupled(0.0, 1.0), std::invalid_argument);
+  EXPECT_THROW(cc::makeNeoHookeDecoupled(1.0, -1.0), std::invalid_argument);
+  EXPECT_THROW(cc::makeNeoHookeDecoupledFromYoung(1.0, 0.5), std::invalid_argument);
 }
 
 // St. Venant-Kirchhoff under uniaxial S: E22 = -nu E11 and S11 = Young * E11 at any stretch.

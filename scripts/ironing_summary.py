@@ -1,0 +1,61 @@
+#!/usr/bin/python3
+"""Summarize ironing runs (issue 14): Newton iterations per step in developed sliding, cut-backs,
+the die force level and its step-to-step jitter, from the reactions CSV and the results file.
+
+usage: ironing_summary.py RESULTS.h5 [...]   (the CSV beside each, STEM_reactions.csv)
+
+Developed sliding: the steps with t > 0.4 (the die has slid at least 1 of 4; the press ends at
+t = 0.2). Force: the total force of the contact pair `die`, or -slab_bottom reaction.
+"""
+import csv
+import sys
+
+import h5py
+
+
+def summarize(path):
+    stem = path[:-3] if path.endswith(".h5") else path
+    rows = list(csv.DictReader(open(stem + "_reactions.csv")))
+    with h5py.File(path, "r") as f:
+        summary = dict(f["summary"].attrs) if "summary" in f else {}
+        cutbacks = len(f["cutbacks"]) if "cutbacks" in f else 0
+    t = [float(r["time"]) for r in rows]
+    its = [int(r["iterations"]) for r in rows]
+    developed = [k for k, tk in enumerate(t) if tk > 0.4 + 1e-9]
+    if "contact_die_Fz" in rows[0]:
+        fz = [-float(r["contact_die_Fz"]) for r in rows]
+        fx = [-float(r["contact_die_Fx"]) for r in rows]
+    else:
+        fz = [float(r["slab_bottom_Fz"]) for r in rows]
+        fx = [float(r["slab_bottom_Fx"]) for r in rows]
+    out = {
+        "file": path,
+        "outcome": summary.get("outcome", b"?"),
+        "steps": len(rows),
+        "final_t": t[-1] if t else 0,
+        "iterations": sum(its),
+        "cutbacks": cutbacks,
+    }
+    if isinstance(out["outcome"], bytes):
+        out["outcome"] = out["outcome"].decode()
+    if len(developed) > 2:
+        out["its_developed"] = sum(its[k] for k in developed) / len(developed)
+        mz = sum(fz[k] for k in developed) / len(developed)
+        ratio = [fx[k] / fz[k] for k in developed]
+        mr = sum(ratio) / len(ratio)
+        out["Fz_mean"] = mz
+        out["Fx/Fz_mean"] = mr
+        d = developed
+        out["jitter_Fz_%"] = 100 * max(abs(fz[d[i + 1]] - 2 * fz[d[i]] + fz[d[i - 1]])
+                                       for i in range(1, len(d) - 1)) / abs(mz)
+        if abs(mr) > 1e-12:
+            out["jitter_Fx/Fz_%"] = 100 * max(abs(ratio[i + 1] - 2 * ratio[i] + ratio[i - 1])
+                                              for i in range(1, len(d) - 1)) / abs(mr)
+    return out
+
+
+if __name__ == "__main__":
+    for p in sys.argv[1:]:
+        s = summarize(p)
+        print("  ".join(f"{k}={v:.4g}" if isinstance(v, float) else f"{k}={v}"
+                        for k, v in s.items()))

@@ -1,0 +1,29 @@
+// Contact pair diagnostics: how many points changed their state (open/stick/slip) or master
+// segment between two Newton iterations, and how many are in contact. A residual whose active
+// set keeps changing is not smooth, and Newton cannot converge quadratically through it
+// (issue 14; `covcontact run --newton-log` prints it per iteration).
+#include "contact/contact_pair.hpp"
+
+namespace cc::contact {
+
+ContactChanges ContactPair::takeChanges() {
+  countedState_.resize(points_.size(), ContactState::Open);
+  countedSegment_.resize(points_.size(), -1);
+  ContactChanges changes;
+  for (std::size_t i = 0; i < points_.size(); ++i) {
+    const PairPoint& point = points_[i];
+    const ContactState state = point.trial.valid ? point.trial.state : ContactState::Open;
+    const int segment = state != ContactState::Open ? point.segment : -1;
+    if (state != countedState_[i]) ++changes.state;
+    // A segment change counts only for a point in contact before and after.
+    if (segment >= 0 && countedSegment_[i] >= 0 && segment != countedSegment_[i]) {
+      ++changes.segment;
+    }
+    if (state != ContactState::Open) ++changes.active;
+    countedState_[i] = state;
+    countedSegment_[i] = segment;
+  }
+  return changes;
+}
+
+}  // namespace cc::contact
