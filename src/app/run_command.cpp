@@ -270,11 +270,20 @@ int runCommand(const RunOptions& options) {
   progress.finish();
   const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
   writer.close({outcomeName(summary.outcome), summary.stepsConverged, summary.totalIterations,
-                summary.totalCutbacks, seconds, summary.message});
+                summary.totalCutbacks, seconds, summary.message, summary.lineSearchRetries,
+                summary.discardedIterations});
   if (summary.outcome == RunSummary::Outcome::Completed) {
+    // The work of failed attempts (retried with line search or cut back) is not in the
+    // iterations of the converged steps; it is said separately.
+    const std::string discarded =
+        summary.discardedIterations > 0
+            ? fmt::format(" (+{} in failed attempts, {} retried with line search)",
+                          summary.discardedIterations, summary.lineSearchRetries)
+            : std::string();
     printOut(fmt::format(
-        "completed: {} steps, {} Newton iterations, {} cut-backs in {:.2f} s; results in {}\n",
-        summary.stepsConverged, summary.totalIterations, summary.totalCutbacks, seconds, path));
+        "completed: {} steps, {} Newton iterations{}, {} cut-backs in {:.2f} s; results in {}\n",
+        summary.stepsConverged, summary.totalIterations, discarded, summary.totalCutbacks, seconds,
+        path));
   }
   if (!references->empty()) {
     const verification::RunCost cost{seconds, summary.totalIterations, summary.stepsConverged};

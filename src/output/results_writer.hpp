@@ -33,6 +33,8 @@ struct RunTotals {
   int cutbacks = 0;
   double wallSeconds = 0;
   std::string message;
+  int lineSearchRetries = 0;    // failed plain-Newton attempts retried with line search
+  int discardedIterations = 0;  // iterations of failed attempts (not in totalIterations)
 };
 
 // <dir>/<stem>.xdmf and <dir>/<stem>_reactions.csv beside <dir>/<stem>.h5.
