@@ -23,7 +23,9 @@ int checkCommand(const std::string& deck, bool listKeywords) {
     const ProblemSpec spec = parseDeck(deck);
     const std::string path = resultsPath(deck, spec.output.file, "");
     // Checked without creating anything (check writes no files).
-    checkOutputWritable(path, {});
+    std::vector<std::string> inputs = spec.deckFiles;  // a results file must not replace them
+    inputs.push_back(spec.mesh.path);
+    checkOutputWritable(path, {}, inputs);
     const auto model = buildModel(spec);
     const verification::ReferenceTracker references(*model);  // checks the `reference` lines
     fmt::print(

@@ -27,6 +27,7 @@ const char* kExitCodes = R"(Exit codes:
   5  compare: the results differ from the reference
   6  a results file could not be written or read
   7  singular system (e.g. an unconstrained rigid-body motion); converged steps are kept
+  8  out of memory (the message says what did not fit); converged steps are kept
  70  internal error (a bug: please report it with the deck))";
 
 std::string joinArguments(int argc, char** argv) {

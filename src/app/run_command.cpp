@@ -2,12 +2,15 @@
 // handling (SIGINT/SIGTERM stop after the current iteration) and a closing summary.
 #include <fmt/format.h>
 #include <omp.h>
+#include <sys/resource.h>
+#include <unistd.h>
 
 #include <atomic>
 #include <chrono>
 #include <csignal>
 #include <filesystem>
 #include <iostream>
+#include <new>
 #include <sstream>
 
 #include "app/commands.hpp"
@@ -29,8 +32,29 @@ namespace {
 
 std::atomic<bool> stopSignal{false};
 
+// The first SIGINT/SIGTERM stops after the current iteration (which may be a long solve); a
+// second one stops at once, like a kill: every step already written stays readable.
 extern "C" void requestStop(int) {
-  stopSignal.store(true);
+  if (!stopSignal.exchange(true)) return;
+  static const char kMessage[] =
+      "\ncovcontact: second interrupt: stopping at once; the steps written so far are kept\n";
+  [[maybe_unused]] const auto written = ::write(STDERR_FILENO, kMessage, sizeof kMessage - 1);
+  ::_exit(kExitInterrupted);
+}
+
+// What did not fit when memory ran out, with the model's size and the memory the process had
+// reached (std::bad_alloc itself says neither).
+std::string outOfMemoryMessage(const char* during, const Model* model) {
+  rusage usage{};
+  ::getrusage(RUSAGE_SELF, &usage);
+  std::string text = fmt::format("out of memory while {}", during);
+  if (model)
+    text += fmt::format(" ({} nodes, {} elements, {} equations)", model->mesh().numNodes(),
+                        model->elementCount(), model->dofMap().numFree());
+  return text + fmt::format(
+                    "; the process had reached {:.2f} GiB; use fewer elements or a "
+                    "machine with more memory",
+                    static_cast<double>(usage.ru_maxrss) / (1 << 20));
 }
 
 // Receives the stepper's records: writes them and reports progress.
@@ -73,12 +97,14 @@ class RunObserver : public StepObserver {
             restartRecordOf(model_, displacement, stepper_->nextStepSize());
         record.restart = &restart;
         writer_.writeStep(record);
+        ++writtenSteps_;
       }
       if (compare) references_->observe(record);  // every converged step, written or not
     }
     progress_.stepConverged(step, time, iterations, cutbacks);
   }
   bool stopRequested() const override { return stopSignal.load(); }
+  int writtenSteps() const { return writtenSteps_; }
 
  private:
   Model& model_;
@@ -88,7 +114,18 @@ class RunObserver : public StepObserver {
   verification::ReferenceTracker* references_;
   const LoadStepper* stepper_ = nullptr;
   std::string linearSolver_;
+  int writtenSteps_ = 0;
 };
+
+// Where the converged steps are, truthfully when output_every left some of them out.
+std::string keptStepsMessage(int converged, int written, const std::string& path) {
+  if (written == converged)
+    return fmt::format("covcontact: the {} converged steps are kept in {}\n", converged, path);
+  return fmt::format(
+      "covcontact: {} of the {} converged steps are written in {} (output_every "
+      "writes only some steps)\n",
+      written, converged, path);
+}
 
 const char* outcomeName(RunSummary::Outcome outcome) {
   switch (outcome) {
@@ -178,6 +215,13 @@ int runCommand(const RunOptions& options) {
   } catch (const OutputError& error) {
     std::cerr << "covcontact: error: " << error.what() << "\n";
     return kExitIo;
+  } catch (const OutOfMemory& error) {
+    std::cerr << "covcontact: error: " << error.what() << "\n";
+    return kExitOutOfMemory;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "covcontact: error: "
+              << outOfMemoryMessage("reading the mesh and building the model", model.get()) << "\n";
+    return kExitOutOfMemory;
   }
   const ProblemSpec& spec = model->spec();
   if (!options.quiet) {
@@ -252,6 +296,24 @@ int runCommand(const RunOptions& options) {
                   observer.linearSolver(), done.linear.krylovIterations,
                   done.linear.krylovFallbacks});
     return kExitInput;
+  } catch (const std::exception& error) {
+    // Memory ran out in a step (the factor, an assembly): the converged steps are on disk; the
+    // file is closed with the reason, which names what did not fit where it is known.
+    const bool outOfMemory = dynamic_cast<const OutOfMemory*>(&error) != nullptr ||
+                             dynamic_cast<const std::bad_alloc*>(&error) != nullptr;
+    if (!outOfMemory) throw;
+    progress.finish();
+    const SolverStatistics done = stepper.statistics();
+    const std::string message = dynamic_cast<const OutOfMemory*>(&error)
+                                    ? std::string(error.what())
+                                    : outOfMemoryMessage("solving a step", model.get());
+    std::cerr << "covcontact: error: " << message << "\n"
+              << keptStepsMessage(done.steps, observer.writtenSteps(), path);
+    writer.close({"out of memory", done.steps, done.iterations, done.cutbacks,
+                  std::chrono::duration<double>(Clock::now() - start).count(), message,
+                  observer.linearSolver(), done.linear.krylovIterations,
+                  done.linear.krylovFallbacks});
+    return kExitOutOfMemory;
   }
   std::signal(SIGINT, SIG_DFL);
   std::signal(SIGTERM, SIG_DFL);
@@ -260,11 +322,20 @@ int runCommand(const RunOptions& options) {
   const SolverStatistics work = stepper.statistics();
   writer.close({outcomeName(summary.outcome), summary.stepsConverged, summary.totalIterations,
                 summary.totalCutbacks, seconds, summary.message, observer.linearSolver(),
-                work.linear.krylovIterations, work.linear.krylovFallbacks});
+                work.linear.krylovIterations, work.linear.krylovFallbacks,
+                summary.lineSearchRetries, summary.discardedIterations});
   if (summary.outcome == RunSummary::Outcome::Completed) {
+    // The work of failed attempts (retried with line search or cut back) is not in the
+    // iterations of the converged steps; it is said separately.
+    const std::string discarded =
+        summary.discardedIterations > 0
+            ? fmt::format(" (+{} in failed attempts, {} retried with line search)",
+                          summary.discardedIterations, summary.lineSearchRetries)
+            : std::string();
     printOut(fmt::format(
-        "completed: {} steps, {} Newton iterations, {} cut-backs in {:.2f} s; results in {}\n",
-        summary.stepsConverged, summary.totalIterations, summary.totalCutbacks, seconds, path));
+        "completed: {} steps, {} Newton iterations{}, {} cut-backs in {:.2f} s; results in {}\n",
+        summary.stepsConverged, summary.totalIterations, discarded, summary.totalCutbacks, seconds,
+        path));
   }
   if (!references->empty()) {
     const verification::RunCost cost{seconds, summary.totalIterations, summary.stepsConverged};
@@ -280,8 +351,7 @@ int runCommand(const RunOptions& options) {
   if (summary.outcome != RunSummary::Outcome::Completed) {
     std::cerr << fmt::format("covcontact: run {} at t = {:.6g}: {}\n", outcomeName(summary.outcome),
                              summary.finalTime, summary.message)
-              << fmt::format("covcontact: the {} converged steps are kept in {}\n",
-                             summary.stepsConverged, path);
+              << keptStepsMessage(summary.stepsConverged, observer.writtenSteps(), path);
   }
   return exitCodeOf(summary.outcome);
 }

@@ -21,6 +21,7 @@ enum ExitCode : int {
   kExitMismatch = 5,     // `compare`: results differ from the reference
   kExitIo = 6,           // output file could not be written / reference not readable
   kExitSingular = 7,     // singular system (e.g. unconstrained rigid-body motion)
+  kExitOutOfMemory = 8,  // the model or its factor did not fit in memory; converged steps kept
   kExitInternal = 70,    // a bug: please report
 };
 
@@ -55,6 +56,13 @@ class StepFailure : public std::runtime_error {
 
  private:
   FailureKind kind_;
+};
+
+// Memory ran out for something the message names with its size (a factor, the model): a limit of
+// the machine, not a step that a smaller increment could fix, so the run stops (kExitOutOfMemory).
+class OutOfMemory : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
 };
 
 }  // namespace cc

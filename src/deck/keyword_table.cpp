@@ -86,7 +86,13 @@ KeywordDecl elementsKeyword() {
                                "solid-shells: thickness direction; auto = the mesh's extrusion "
                                "direction (local zeta), x|y|z = the local axis closest to it")
                          .withDefault("auto"),
-                     integerValue("eas", "solid-shells: number of EAS thickness-strain parameters")
+                     integerValue("eas",
+                                  "solid-shells: enhanced-strain (EAS) parameters. solid_shell8: "
+                                  "0 none; 1 thickness strain E33~zeta; 3 E33~zeta(1,xi,eta); "
+                                  "5/7 = 1/3 plus in-plane modes E11~xi, E22~eta, E12~xi,eta "
+                                  "(in-plane bending and near incompressibility, like an "
+                                  "incompatible-mode brick). solid_shell18: 0, 1, 3, or 9 "
+                                  "(E33~zeta x biquadratic). See docs/verification/shells.md")
                          .withRange(Range::atLeast(0))
                          .withDefault("1")},
       .itemName = "GROUP",

@@ -38,6 +38,8 @@ struct RunTotals {
   std::string linearSolver;
   long krylovIterations = 0;
   int krylovFallbacks = 0;
+  int lineSearchRetries = 0;    // failed plain-Newton attempts retried with line search
+  int discardedIterations = 0;  // iterations of failed attempts (not in totalIterations)
 };
 
 // <dir>/<stem>.xdmf and <dir>/<stem>_reactions.csv beside <dir>/<stem>.h5.

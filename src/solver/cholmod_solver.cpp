@@ -75,6 +75,23 @@ class CholmodSolver final : public LinearSolver {
 
   std::string name() const override { return "CHOLMOD"; }
 
+  // CHOLMOD_OUT_OF_MEMORY (-2) and CHOLMOD_TOO_LARGE (-3, the factor's size overflows its
+  // integers): a limit of the machine or the library, said with the sizes involved.
+  void throwIfOutOfMemory(const char* phase, const SparseMatrix& matrix) const {
+    if (common_.status != CHOLMOD_OUT_OF_MEMORY && common_.status != CHOLMOD_TOO_LARGE) return;
+    const std::string estimate =
+        symbolic_ && common_.lnz > 0
+            ? fmt::format("; the analysis estimated {:.3g} nonzeros in the factor, {:.2f} GiB",
+                          common_.lnz, common_.lnz * 12.0 / (1u << 30))
+            : std::string();
+    throw OutOfMemory(fmt::format(
+        "CHOLMOD {} in the {} of the {} x {} tangent ({} nonzeros){}: the Cholesky factor of "
+        "this model does not fit; use fewer elements or a machine with more memory",
+        common_.status == CHOLMOD_TOO_LARGE ? "found the problem too large for its integers"
+                                            : "ran out of memory",
+        phase, matrix.rows(), matrix.cols(), matrix.nonZeros(), estimate));
+  }
+
   void analyzePattern(const SparseMatrix& matrix) override {
     const auto start = std::chrono::steady_clock::now();
     if (factor_) cholmod_free_factor(&factor_, &common_);
@@ -82,6 +99,7 @@ class CholmodSolver final : public LinearSolver {
     cholmod_sparse view = viewOf(matrix);
     symbolic_ = cholmod_analyze(&view, &common_);
     if (!symbolic_) {
+      throwIfOutOfMemory("analysis", matrix);
       throw std::runtime_error(fmt::format("CHOLMOD analysis failed (status {})", common_.status));
     }
     ++statistics_.analyses;
@@ -96,6 +114,7 @@ class CholmodSolver final : public LinearSolver {
     const auto start = std::chrono::steady_clock::now();
     if (!factor_) factor_ = cholmod_copy_factor(symbolic_, &common_);
     if (!factor_) {
+      throwIfOutOfMemory("factor allocation", matrix);
       throw std::runtime_error(
           fmt::format("CHOLMOD: out of memory for the factor (status {})", common_.status));
     }
@@ -114,6 +133,7 @@ class CholmodSolver final : public LinearSolver {
     }
     if (common_.status < CHOLMOD_OK) {
       ++statistics_.failedFactorizations;
+      throwIfOutOfMemory("factorization", matrix);
       throw std::runtime_error(
           fmt::format("CHOLMOD factorization failed (status {})", common_.status));
     }

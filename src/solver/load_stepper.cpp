@@ -131,6 +131,8 @@ bool LoadStepper::runPhase(const PhaseSpec& phase, double phaseStart, PhaseRun& 
       // the cycle, so it is tried on the same step before the step is cut back.
       problem_.restoreStep();
       run.displacement = run.converged;
+      ++summary_.lineSearchRetries;
+      summary_.discardedIterations += result.iterations;
       observer_.cutback({step.step, step.time, (target - position) * phase.dt,
                          "retrying the step with line search: " + result.message});
       NewtonSpec withLineSearch = phase.newton;
@@ -214,6 +216,7 @@ bool LoadStepper::rejectStep(const PhaseSpec& phase, const NewtonResult& result,
                              PhaseRun& run) {
   problem_.restoreStep();
   run.displacement = run.converged;
+  summary_.discardedIterations += result.iterations;
   if (result.status == NewtonResult::Status::Interrupted) {
     summary_.outcome = RunSummary::Outcome::Interrupted;
     summary_.message =

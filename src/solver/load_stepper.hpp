@@ -24,6 +24,10 @@ struct RunSummary {
   int stepsConverged = 0;
   int totalIterations = 0;
   int totalCutbacks = 0;
+  // Steps whose plain Newton failed and that were retried with line search, and the iterations
+  // of every failed attempt (retried or cut back): work done that is not in totalIterations.
+  int lineSearchRetries = 0;
+  int discardedIterations = 0;
   double finalTime = 0;
   std::string message;  // why the run stopped, if it did not complete
 };

@@ -146,7 +146,7 @@ class UmfpackSolver final : public LinearSolver {
   // Memory is a limit of the machine, not a step that a smaller load increment could fix.
   void throwIfOutOfMemory(SuiteSparse_long status, const char* phase, const SparseMatrix& matrix) {
     if (status != UMFPACK_ERROR_out_of_memory) return;
-    throw std::runtime_error(fmt::format(
+    throw OutOfMemory(fmt::format(
         "UMFPACK ran out of memory in the {} of the {} x {} tangent ({} nonzeros); the LU "
         "factor of this model does not fit: use fewer elements or a machine with more memory",
         phase, matrix.rows(), matrix.cols(), matrix.nonZeros()));

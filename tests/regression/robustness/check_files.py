@@ -15,12 +15,16 @@
 --case unreadable: a restart or compare file that is a directory, a FIFO, empty, not HDF5 or a
   truncated results file stops with exit 6 and says which of these it is (no blocking on the
   FIFO); `--threads 0` and `--from-step 0` say what is allowed without a 300-digit number.
+--case interrupt: an interrupted run with output_every says how many of its converged steps are
+  written (it said N were kept while the file held none); a second SIGINT stops at once (exit 4)
+  and the steps written before stay readable.
 
 Usage: check_files.py --covcontact BIN --source DIR --scratch DIR --case C
 """
 import argparse
 import os
 import shutil
+import signal
 import subprocess
 import sys
 import time
@@ -28,7 +32,7 @@ import time
 import h5py
 
 COMMAND_TIMEOUT_S = 120
-EXIT_OK, EXIT_USAGE, EXIT_IO = 0, 1, 6
+EXIT_OK, EXIT_USAGE, EXIT_INTERRUPTED, EXIT_IO = 0, 1, 4, 6
 CORE = os.path.join("input", "verification", "core")
 SHORT_DECK = "neohooke_bending.deck"  # 4 steps, includes neohooke_bending_model.inc
 SHORT_STEPS = 4
@@ -225,18 +229,75 @@ def unreadable_case(args):
         print(f"{option} 0: exit 1, {result.stderr.strip().splitlines()[0]}")
 
 
+def start_long_run(args, decks, results, deck_text=None):
+    deck = os.path.join(decks, LONG_DECK)
+    if deck_text is not None:
+        deck = os.path.join(decks, "long_variant.deck")
+        with open(deck, "w") as stream:
+            stream.write(deck_text)
+    return subprocess.Popen([args.covcontact, "run", deck, "-o", results, "--threads", "1"],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+
+
+def wait_for_progress_line(process, step):
+    for line in process.stdout:
+        if line.startswith(f"step {step}/"):
+            return
+    fail(f"the run ended before step {step}")
+
+
+def interrupt_case(args):
+    decks = copy_core(args)
+    # output_every=1000: only the phase end would be written; an interrupted run has none.
+    with open(os.path.join(decks, LONG_DECK)) as stream:
+        text = stream.read().replace("steps 60 dt=1", "steps 60 dt=1 output_every=1000")
+    results = os.path.join(args.scratch, "sparse.h5")
+    process = start_long_run(args, decks, results, text)
+    wait_for_progress_line(process, 3)
+    process.send_signal(signal.SIGINT)
+    _, stderr = process.communicate(timeout=COMMAND_TIMEOUT_S)
+    check(process.returncode == EXIT_INTERRUPTED, f"interrupted run: exit {process.returncode}")
+    with h5py.File(results, "r") as h5:
+        written = len(h5["steps"])
+        converged = int(h5["summary"].attrs["steps"])
+    check(written == 0 and converged >= 3, f"{written} written, {converged} converged")
+    expected = f"0 of the {converged} converged steps are written"
+    check(expected in stderr, f"stderr lacks {expected!r}:\n{stderr}")
+    print(f"interrupted with output_every: {stderr.strip().splitlines()[-1]}")
+
+    # A second interrupt stops at once, without waiting for the iteration to end: a finer mesh
+    # makes each iteration's solve last long enough (seconds) for both signals to arrive in it.
+    results = os.path.join(args.scratch, "twice.h5")
+    with open(os.path.join(decks, LONG_DECK)) as stream:
+        text = stream.read().replace("nx=40 ny=4 nz=4", "nx=160 ny=8 nz=8")
+    process = start_long_run(args, decks, results, text)
+    process.stdout.readline()  # the model is built; the first step's iterations are running
+    time.sleep(1.0)
+    process.send_signal(signal.SIGINT)
+    time.sleep(0.3)
+    process.send_signal(signal.SIGINT)
+    started = time.time()
+    _, stderr = process.communicate(timeout=COMMAND_TIMEOUT_S)
+    check(process.returncode == EXIT_INTERRUPTED and "second interrupt" in stderr,
+          f"second interrupt: exit {process.returncode}\n{stderr}")
+    with h5py.File(results, "r", locking=False) as h5:
+        check("mesh" in h5 and "steps" in h5, "the file written before the interrupt is damaged")
+    print(f"second interrupt: exit {EXIT_INTERRUPTED} {time.time() - started:.2f} s after it, "
+          "the file readable")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("--covcontact", required=True)
     parser.add_argument("--source", required=True, help="the source directory")
     parser.add_argument("--scratch", required=True, help="working directory (emptied first)")
     parser.add_argument("--case", required=True,
-                        choices=["inputs", "concurrent", "sigpipe", "unreadable"])
+                        choices=["inputs", "concurrent", "sigpipe", "unreadable", "interrupt"])
     args = parser.parse_args()
     shutil.rmtree(args.scratch, ignore_errors=True)
     os.makedirs(args.scratch)
     {"inputs": inputs_case, "concurrent": concurrent_case, "sigpipe": sigpipe_case,
-     "unreadable": unreadable_case}[args.case](args)
+     "unreadable": unreadable_case, "interrupt": interrupt_case}[args.case](args)
 
 
 if __name__ == "__main__":

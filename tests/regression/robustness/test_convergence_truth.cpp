@@ -4,6 +4,8 @@
 // norm used to accept the first iterate); and cut-backs stop once a step no longer moves time.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <map>
 #include <string>
 
 #include "stress_support.hpp"
@@ -83,6 +85,28 @@ TEST(ConvergenceTruth, CutBacksStopWhenTheStepNoLongerMovesTime) {
       << run.summary.message;
   // Halving from 1 to the smallest step of 1e-8 dt: 26 cut-backs (2^-26 = 1.5e-8).
   EXPECT_EQ(run.summary.totalCutbacks, 26) << run.summary.message;
+}
+
+TEST(ConvergenceTruth, RetriesWithLineSearchAndTheirIterationsAreCounted) {
+  // Example 6.1 with friction: plain Newton fails twice in 30 iterations and is retried with
+  // line search. Those iterations were in no summary ("148 Newton iterations, 0 cut-backs").
+  const DeckRun run = runStressDeck("restart_6_1");
+  ASSERT_EQ(run.summary.outcome, RunSummary::Outcome::Completed) << run.summary.message;
+  int retries = 0;
+  for (const CutbackRecord& record : run.cutbacks)
+    retries += record.reason.rfind("retrying the step with line search", 0) == 0;
+  // The iterations of attempts that did not converge: every logged row of an attempt other than
+  // the last one of its step.
+  std::map<int, int> lastAttempt;
+  for (const IterationRecord& row : run.iterations)
+    lastAttempt[row.step] = std::max(lastAttempt[row.step], row.attempt);
+  int discarded = 0, kept = 0;
+  for (const IterationRecord& row : run.iterations)
+    (row.attempt < lastAttempt[row.step] ? discarded : kept) += 1;
+  EXPECT_GT(retries, 0);
+  EXPECT_EQ(run.summary.lineSearchRetries, retries);
+  EXPECT_EQ(run.summary.discardedIterations, discarded);
+  EXPECT_EQ(run.summary.totalIterations, kept);
 }
 
 }  // namespace
