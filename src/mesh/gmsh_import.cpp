@@ -60,10 +60,13 @@ class GmshSession {
   GmshSession() : lock_(mutex()), callerThreads_(omp_get_max_threads()) {
     gmsh::initialize(0, nullptr, /*readConfigFiles=*/false);
     gmsh::option::setNumber("General.Terminal", 0);
-    // No more meshing threads than the run may use (--threads 1: one thread in the process).
+    // Meshing runs on one thread: gmsh 4.8's message logger (gmsh::logger, needed for the
+    // error messages) is not thread-safe, and with more meshing threads its progress messages
+    // corrupted the heap ("double free or corruption" in apiMsg from libgomp threads). One
+    // thread also keeps --threads 1 at one thread in the process.
     for (const char* option : {"General.NumThreads", "Mesh.MaxNumThreads1D", "Mesh.MaxNumThreads2D",
                                "Mesh.MaxNumThreads3D"}) {
-      gmsh::option::setNumber(option, callerThreads_);
+      gmsh::option::setNumber(option, 1);
     }
     // DefineConstant values with a Name also live in gmsh's ONELAB parameter store, which
     // outlives finalize(): without clearing it an import would see the previous one's values.

@@ -70,6 +70,15 @@ bool writtenByUs(const std::string& path, OutputKind kind) {
   }
 }
 
+// Whether another process holds the exclusive flock a ResultsWriter takes on its file.
+bool lockedByAWriter(const std::string& path) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return false;
+  const bool locked = ::flock(fd, LOCK_SH | LOCK_NB) != 0 && errno == EWOULDBLOCK;
+  ::close(fd);  // releases the shared lock if it was granted
+  return locked;
+}
+
 const char* kindName(OutputKind kind) {
   switch (kind) {
     case OutputKind::Results:
@@ -108,10 +117,16 @@ void checkReplaceable(const std::string& path, OutputKind kind,
     throw OutputError("refusing to write " + what +
                       ": it is not a regular file (a device, FIFO or socket)");
   if (fs::file_size(path, error) == 0 || error) return;
-  if (!writtenByUs(path, kind))
-    throw OutputError("refusing to overwrite " + what +
-                      ": it exists and was not written by CovContact; remove it or choose "
-                      "another results file with -o");
+  if (writtenByUs(path, kind)) return;
+  // A file that a run in progress is writing may not have its root attributes on disk yet, and
+  // would look foreign: the writer's flock tells (ours is taken only after this check passes).
+  if (kind == OutputKind::Results && lockedByAWriter(path))
+    throw OutputError("results file '" + path +
+                      "' is being written by another process (a run in progress); wait for it "
+                      "to finish or choose another results file with -o");
+  throw OutputError("refusing to overwrite " + what +
+                    ": it exists and was not written by CovContact; remove it or choose "
+                    "another results file with -o");
 }
 
 ResultsFileLock::ResultsFileLock(const std::string& path) {
