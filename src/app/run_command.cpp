@@ -315,8 +315,8 @@ int runCommand(const RunOptions& options) {
                   done.linear.krylovFallbacks});
     return kExitOutOfMemory;
   }
-  std::signal(SIGINT, SIG_DFL);
-  std::signal(SIGTERM, SIG_DFL);
+  // The handlers stay until the file is closed: a second interrupt arriving while the run winds
+  // up must end it through requestStop (exit 4, file intact), not by the default action.
   progress.finish();
   const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
   const SolverStatistics work = stepper.statistics();
