@@ -14,6 +14,7 @@
 
 #include "app/commands.hpp"
 #include "common/errors.hpp"
+#include "parallel/process_group.hpp"
 #include "solver/petsc_loader.hpp"
 
 namespace {
@@ -208,6 +209,8 @@ int main(int argc, char** argv) {
     return code == 0 ? cc::kExitOk : cc::kExitUsage;
   }
 
+  // Under mpirun the processes share the cores: one thread each unless --threads says more.
+  if (*runCommand && run.threads == 0 && cc::launchedProcesses() > 1) run.threads = 1;
   if (*runCommand) applyOpenMpEnvironment(argv, run.threads);
   reuseFreedMemory();
   try {

@@ -1,5 +1,9 @@
 // `covcontact run`: deck -> model -> load stepping -> results file, with progress, signal
-// handling (SIGINT/SIGTERM stop after the current iteration) and a closing summary.
+// handling (SIGINT/SIGTERM stop after the current iteration) and a closing summary. Under
+// `mpirun -np N` every process runs this same flow on the whole model (model/
+// model_distribution.cpp divides the work); rank 0 alone prints and writes the results file,
+// errors are agreed on (ProcessGroup::agree) and reported once, and a process that must stop
+// alone ends the whole run (ProcessGroup::abort) rather than leave the others waiting.
 #include <fmt/format.h>
 #include <omp.h>
 #include <sys/resource.h>
@@ -22,6 +26,7 @@
 #include "output/hdf5_io.hpp"
 #include "output/results_file_guard.hpp"
 #include "output/results_writer.hpp"
+#include "parallel/process_group.hpp"
 #include "solver/load_stepper.hpp"
 #include "verification/reference_report.hpp"
 #include "verification/reference_tracker.hpp"
@@ -60,20 +65,22 @@ std::string outOfMemoryMessage(const char* during, const Model* model) {
 // Receives the stepper's records: writes them and reports progress.
 class RunObserver : public StepObserver {
  public:
-  RunObserver(Model& model, ResultsWriter& writer, Progress& progress, bool withStress,
-              verification::ReferenceTracker* references = nullptr)
+  // `writer` is null on the processes that do not write (every rank but 0 under mpirun).
+  RunObserver(Model& model, ResultsWriter* writer, Progress& progress, bool withStress,
+              ProcessGroup& group, verification::ReferenceTracker* references = nullptr)
       : model_(model),
         writer_(writer),
         progress_(progress),
         withStress_(withStress),
+        group_(group),
         references_(references) {}
 
   void iteration(const IterationRecord& record) override {
-    writer_.appendIteration(record);
+    if (writer_) writer_->appendIteration(record);
     progress_.iteration(record);
   }
   void cutback(const CutbackRecord& record) override {
-    writer_.appendCutback(record);
+    if (writer_) writer_->appendCutback(record);
     progress_.cutback(record);
   }
   void note(const std::string& line) override {
@@ -87,6 +94,7 @@ class RunObserver : public StepObserver {
   void stepConverged(int step, double time, int iterations, int cutbacks,
                      const Eigen::VectorXd& displacement, const Eigen::VectorXd& internalForce,
                      bool writeOutput) override {
+    if (!writer_) return;  // the state is the same on every process; rank 0 writes it
     model_.accountEnergy(time, displacement, internalForce);  // every step: a running sum
     const bool compare = references_ && !references_->empty();
     if (writeOutput || compare) {
@@ -96,21 +104,24 @@ class RunObserver : public StepObserver {
         const RestartRecord restart =
             restartRecordOf(model_, displacement, stepper_->nextStepSize());
         record.restart = &restart;
-        writer_.writeStep(record);
+        writer_->writeStep(record);
         ++writtenSteps_;
       }
       if (compare) references_->observe(record);  // every converged step, written or not
     }
     progress_.stepConverged(step, time, iterations, cutbacks);
   }
-  bool stopRequested() const override { return stopSignal.load(); }
+  // Several processes: a signal may reach them at different iterations; all stop at the first
+  // poll after any one of them got it.
+  bool stopRequested() const override { return group_.maximum(stopSignal.load() ? 1 : 0) != 0; }
   int writtenSteps() const { return writtenSteps_; }
 
  private:
   Model& model_;
-  ResultsWriter& writer_;
+  ResultsWriter* writer_;
   Progress& progress_;
   bool withStress_;
+  ProcessGroup& group_;
   verification::ReferenceTracker* references_;
   const LoadStepper* stepper_ = nullptr;
   std::string linearSolver_;
@@ -182,53 +193,99 @@ std::string resultsPath(const std::string& deckPath, const std::string& deckOutp
   return std::filesystem::path(deckPath).stem().string() + ".h5";
 }
 
+namespace {
+
+// What stops a run before its first step: the exit code and the message (printed once).
+struct SetupError {
+  int code = kExitOk;
+  std::string message;
+};
+
+// Reads the deck, checks the results path and builds the model (on every process). Errors are
+// returned, not printed: under mpirun the processes first agree on them.
+SetupError setUp(const RunOptions& options, bool writes, std::unique_ptr<Model>& model,
+                 std::unique_ptr<verification::ReferenceTracker>& references, std::string& path,
+                 OutputSelection& selection, StartState& startState,
+                 std::vector<std::string>& inputs) {
+  try {
+    const ProblemSpec spec = parseDeck(options.deck);
+    path = resultsPath(options.deck, spec.output.file, options.output);
+    selection = outputSelection(spec.output);
+    if (!options.restartFile.empty() && sameFile(path, options.restartFile)) {
+      return {kExitUsage, "covcontact: error: the results file '" + path +
+                              "' is the restart file; give another one with -o"};
+    }
+    inputs = spec.deckFiles;
+    inputs.push_back(spec.mesh.path);
+    if (!options.restartFile.empty()) inputs.push_back(options.restartFile);
+    if (writes) checkOutputWritable(path, selection, inputs);
+    model = buildModel(spec);
+    references = std::make_unique<verification::ReferenceTracker>(*model);
+    if (!options.restartFile.empty())
+      startState = restartFrom(options.restartFile, options.restartStep, *model);
+  } catch (const InputError& error) {
+    return {kExitInput, error.what()};
+  } catch (const OutputError& error) {
+    return {kExitIo, std::string("covcontact: error: ") + error.what()};
+  } catch (const OutOfMemory& error) {
+    return {kExitOutOfMemory, std::string("covcontact: error: ") + error.what()};
+  } catch (const std::bad_alloc&) {
+    return {kExitOutOfMemory,
+            "covcontact: error: " +
+                outOfMemoryMessage("reading the mesh and building the model", model.get())};
+  }
+  return {};
+}
+
+// Options that inspect one process's whole tangent, which no process has under mpirun.
+SetupError refuseSerialOnlyOptions(const RunOptions& options, const ProcessGroup& group) {
+  if (group.size() == 1) return {};
+  for (const auto& [given, name] : {std::pair{!options.dumpTangent.empty(), "--dump-tangent"},
+                                    std::pair{!options.checkTangent.empty(), "--check-tangent"}}) {
+    if (given) {
+      return {kExitUsage, fmt::format("covcontact: error: {} needs the whole tangent in one "
+                                      "process; run it without mpirun (or with -np 1)",
+                                      name)};
+    }
+  }
+  return {};
+}
+
+}  // namespace
+
 int runCommand(const RunOptions& options) {
   using Clock = std::chrono::steady_clock;
   const auto start = Clock::now();
   if (options.threads > 0) omp_set_num_threads(options.threads);
+  ProcessGroup& group = processGroup();
+  const bool writes = group.rank() == 0;  // the one process that prints and writes the results
   std::unique_ptr<Model> model;
   std::unique_ptr<verification::ReferenceTracker> references;
   std::string path;
   OutputSelection selection;
   StartState startState;
   std::vector<std::string> inputs;  // files the results must never replace
-  try {
-    const ProblemSpec spec = parseDeck(options.deck);
-    path = resultsPath(options.deck, spec.output.file, options.output);
-    selection = outputSelection(spec.output);
-    if (!options.restartFile.empty() && sameFile(path, options.restartFile)) {
-      std::cerr << "covcontact: error: the results file '" << path
-                << "' is the restart file; give another one with -o\n";
-      return kExitUsage;
+  SetupError setup = refuseSerialOnlyOptions(options, group);
+  if (setup.code == kExitOk) {
+    setup = setUp(options, writes, model, references, path, selection, startState, inputs);
+  }
+  std::string partition;
+  {
+    const auto [code, message] = group.agree(setup.code, setup.message);
+    if (code != kExitOk) {
+      if (writes) std::cerr << message << "\n";
+      return code;
     }
-    inputs = spec.deckFiles;
-    inputs.push_back(spec.mesh.path);
-    if (!options.restartFile.empty()) inputs.push_back(options.restartFile);
-    checkOutputWritable(path, selection, inputs);
-    model = buildModel(spec);
-    references = std::make_unique<verification::ReferenceTracker>(*model);
-    if (!options.restartFile.empty())
-      startState = restartFrom(options.restartFile, options.restartStep, *model);
-  } catch (const InputError& error) {
-    std::cerr << error.what() << "\n";
-    return kExitInput;
-  } catch (const OutputError& error) {
-    std::cerr << "covcontact: error: " << error.what() << "\n";
-    return kExitIo;
-  } catch (const OutOfMemory& error) {
-    std::cerr << "covcontact: error: " << error.what() << "\n";
-    return kExitOutOfMemory;
-  } catch (const std::bad_alloc&) {
-    std::cerr << "covcontact: error: "
-              << outOfMemoryMessage("reading the mesh and building the model", model.get()) << "\n";
-    return kExitOutOfMemory;
+    partition = model->distribute(group);
   }
   const ProblemSpec& spec = model->spec();
-  if (!options.quiet) {
+  const bool quiet = options.quiet || !writes;
+  if (!quiet) {
     printOut(fmt::format("{}: {} nodes, {} elements, {} equations, {} contact points, {} threads\n",
                          spec.title.empty() ? options.deck : spec.title, model->mesh().numNodes(),
                          model->elementCount(), model->dofMap().numFree(),
                          model->contactPointCount(), model->threads()));
+    if (!partition.empty()) printOut(partition + "\n");
     for (const auto& pair : model->contactPairs()) {
       const contact::ContactPairConfig& config = pair->config();
       if (config.automaticPenalty) {
@@ -243,17 +300,27 @@ int runCommand(const RunOptions& options) {
   }
 
   ResultsWriter writer;
-  try {
-    writer.open(
-        path,
-        {spec.deckText, options.commandLine, spec.title, COVCONTACT_VERSION, options.deck, inputs},
-        model->mesh(), selection);
-  } catch (const OutputError& error) {
-    std::cerr << "covcontact: error: " << error.what() << "\n";
-    return kExitIo;
+  {
+    SetupError opened;
+    if (writes) {
+      try {
+        writer.open(path,
+                    {spec.deckText, options.commandLine, spec.title, COVCONTACT_VERSION,
+                     options.deck, inputs},
+                    model->mesh(), selection);
+      } catch (const OutputError& error) {
+        opened = {kExitIo, std::string("covcontact: error: ") + error.what()};
+      }
+    }
+    const auto [code, message] = group.agree(opened.code, opened.message);
+    if (code != kExitOk) {
+      if (writes) std::cerr << message << "\n";
+      return code;
+    }
   }
-  Progress progress(plannedSteps(spec), options.quiet, options.newtonLog);
-  RunObserver observer(*model, writer, progress, selection.stress, references.get());
+  Progress progress(plannedSteps(spec), quiet, options.newtonLog && writes);
+  RunObserver observer(*model, writes ? &writer : nullptr, progress, selection.stress, group,
+                       references.get());
   stopSignal.store(false);
   std::signal(SIGINT, requestStop);
   std::signal(SIGTERM, requestStop);
@@ -278,48 +345,65 @@ int runCommand(const RunOptions& options) {
     stepper.setTangentCheck(step, iteration);
   }
   observer.attach(stepper);
+  // A process that has to stop on its own (rank 0's results file failed, memory ran out on one
+  // process) takes the others with it: they would wait for it in the next collective operation.
+  auto stopAlone = [&group](int code) {
+    if (group.size() > 1) group.abort(code);
+    return code;
+  };
   RunSummary summary;
   try {
     summary = stepper.run(startState);
   } catch (const OutputError& error) {
     progress.finish();
     std::cerr << "covcontact: error: " << error.what() << "\n";
-    return kExitIo;
+    return stopAlone(kExitIo);
   } catch (const InputError& error) {
     // A deck function that fails only when evaluated (an expression that is not finite at some
-    // t): the converged steps stay in the file, which is closed with the reason.
+    // t): the converged steps stay in the file, which is closed with the reason. Every process
+    // evaluates the same functions at the same times, so they all get here.
     progress.finish();
-    std::cerr << error.what() << "\n";
+    if (writes) std::cerr << error.what() << "\n";
     const SolverStatistics done = stepper.statistics();
-    writer.close({"input error", done.steps, done.iterations, done.cutbacks,
-                  std::chrono::duration<double>(Clock::now() - start).count(), error.what(),
-                  observer.linearSolver(), done.linear.krylovIterations,
-                  done.linear.krylovFallbacks});
+    if (writes) {
+      writer.close({"input error", done.steps, done.iterations, done.cutbacks,
+                    std::chrono::duration<double>(Clock::now() - start).count(), error.what(),
+                    observer.linearSolver(), done.linear.krylovIterations,
+                    done.linear.krylovFallbacks});
+    }
     return kExitInput;
   } catch (const std::exception& error) {
     // Memory ran out in a step (the factor, an assembly): the converged steps are on disk; the
     // file is closed with the reason, which names what did not fit where it is known.
     const bool outOfMemory = dynamic_cast<const OutOfMemory*>(&error) != nullptr ||
                              dynamic_cast<const std::bad_alloc*>(&error) != nullptr;
-    if (!outOfMemory) throw;
+    if (!outOfMemory) {
+      if (group.size() == 1) throw;
+      std::cerr << "covcontact: internal error on process " << group.rank() << ": " << error.what()
+                << "\n";
+      return stopAlone(kExitInternal);
+    }
     progress.finish();
     const SolverStatistics done = stepper.statistics();
     const std::string message = dynamic_cast<const OutOfMemory*>(&error)
                                     ? std::string(error.what())
                                     : outOfMemoryMessage("solving a step", model.get());
-    std::cerr << "covcontact: error: " << message << "\n"
-              << keptStepsMessage(done.steps, observer.writtenSteps(), path);
-    writer.close({"out of memory", done.steps, done.iterations, done.cutbacks,
-                  std::chrono::duration<double>(Clock::now() - start).count(), message,
-                  observer.linearSolver(), done.linear.krylovIterations,
-                  done.linear.krylovFallbacks});
-    return kExitOutOfMemory;
+    std::cerr << "covcontact: error: " << message << "\n";
+    if (writes) {
+      std::cerr << keptStepsMessage(done.steps, observer.writtenSteps(), path);
+      writer.close({"out of memory", done.steps, done.iterations, done.cutbacks,
+                    std::chrono::duration<double>(Clock::now() - start).count(), message,
+                    observer.linearSolver(), done.linear.krylovIterations,
+                    done.linear.krylovFallbacks});
+    }
+    return stopAlone(kExitOutOfMemory);
   }
   // The handlers stay until the file is closed: a second interrupt arriving while the run winds
   // up must end it through requestStop (exit 4, file intact), not by the default action.
   progress.finish();
   const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
   const SolverStatistics work = stepper.statistics();
+  if (!writes) return exitCodeOf(summary.outcome);
   writer.close({outcomeName(summary.outcome), summary.stepsConverged, summary.totalIterations,
                 summary.totalCutbacks, seconds, summary.message, observer.linearSolver(),
                 work.linear.krylovIterations, work.linear.krylovFallbacks,

@@ -138,6 +138,7 @@ struct Assembler::Impl {
   std::uint64_t patternVersion = 0;
   std::vector<ThreadBuffers> threadBuffers;
   std::size_t minItemsForThreads = kDefaultMinItemsForThreads;
+  ItemFilter filter;
 
   Impl(const DofMap& dofMap, std::vector<Contribution*> list)
       : dofs(dofMap), contributions(std::move(list)), states(contributions.size()) {}
@@ -146,7 +147,8 @@ struct Assembler::Impl {
   bool patternStale(const SystemMatrices& tangent) const;
   void rebuildPattern(SystemMatrices& tangent, AssemblyTimings& timings);
   void evaluateItem(Contribution& contribution, std::size_t item, const AssemblyState& state,
-                    ThreadBuffers& buffers, Eigen::VectorXd& force, SystemMatrices* tangent);
+                    ThreadBuffers& buffers, Eigen::VectorXd& force, SystemMatrices* tangent,
+                    bool scatter);
   void evaluateContribution(std::size_t index, const AssemblyState& state, Eigen::VectorXd& force,
                             SystemMatrices* tangent);
 };
@@ -194,7 +196,7 @@ void Assembler::Impl::rebuildPattern(SystemMatrices& tangent, AssemblyTimings& t
 
 void Assembler::Impl::evaluateItem(Contribution& contribution, std::size_t item,
                                    const AssemblyState& state, ThreadBuffers& buffers,
-                                   Eigen::VectorXd& force, SystemMatrices* tangent) {
+                                   Eigen::VectorXd& force, SystemMatrices* tangent, bool scatter) {
   const std::span<const int> nodes = contribution.itemNodes(item);
   LocalBuffers& local = buffers.forNodes(nodes.size(), tangent != nullptr);
   local.force.setZero();
@@ -216,6 +218,7 @@ void Assembler::Impl::evaluateItem(Contribution& contribution, std::size_t item,
     buffers.failure.record(item, FailureKind::NotFinite, "non-finite local force or tangent");
     return;
   }
+  if (!scatter) return;
   for (std::size_t k = 0; k < nodes.size(); ++k) {
     force.segment<3>(3 * static_cast<Eigen::Index>(nodes[k])) += local.force.segment<3>(3 * k);
   }
@@ -251,7 +254,11 @@ void Assembler::Impl::evaluateContribution(std::size_t index, const AssemblyStat
       const std::ptrdiff_t end = static_cast<std::ptrdiff_t>(coloring.colorBegin[color + 1]);
 #pragma omp for schedule(dynamic, kScheduleChunk)
       for (std::ptrdiff_t k = begin; k < end; ++k) {
-        evaluateItem(contribution, coloring.items[k], state, buffers, force, tangent);
+        const std::size_t item = coloring.items[k];
+        const ItemRole role = filter ? filter(index, item) : ItemRole::Assemble;
+        if (role == ItemRole::Skip) continue;
+        evaluateItem(contribution, item, state, buffers, force, tangent,
+                     role == ItemRole::Assemble);
       }
     }
   }
@@ -273,6 +280,10 @@ Assembler::~Assembler() = default;
 
 void Assembler::setMinItemsForThreads(std::size_t items) {
   impl_->minItemsForThreads = items;
+}
+
+void Assembler::setItemFilter(ItemFilter filter) {
+  impl_->filter = std::move(filter);
 }
 
 int Assembler::threads() const {

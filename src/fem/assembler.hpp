@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -44,6 +45,15 @@ struct AssemblyTimings {
   std::vector<ContributionTimings> byContribution;
 };
 
+// What this process does with an item in a run on several processes (the model decides; a
+// serial run has no filter and assembles every item).
+enum class ItemRole {
+  Assemble,      // evaluate and add into the force vector and tangent
+  EvaluateOnly,  // evaluate for its history only (another process adds it)
+  Skip,          // another process owns it
+};
+using ItemFilter = std::function<ItemRole(std::size_t contribution, std::size_t item)>;
+
 class Assembler {
  public:
   // Keeps references: `dofs` and the contributions must outlive the assembler.
@@ -60,6 +70,8 @@ class Assembler {
 
   const AssemblyTimings& timings() const { return timings_; }
   int threads() const;
+  // Restricts the items evaluated and added (contribution index in the constructor's order).
+  void setItemFilter(ItemFilter filter);
   // Contributions with fewer items are evaluated on one thread (default 2048, see assembler.cpp).
   void setMinItemsForThreads(std::size_t items);
 

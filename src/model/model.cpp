@@ -26,7 +26,27 @@ void Model::externalForces(double t, Eigen::VectorXd& force) const {
 
 void Model::assemble(const AssemblyState& state, Eigen::VectorXd& internalForce,
                      SystemMatrices* tangent) {
-  assembler_->assemble(state, internalForce, tangent);
+  if (!group_) {
+    assembler_->assemble(state, internalForce, tangent);
+    return;
+  }
+  // Several processes: an element failing on one process fails the iteration on all of them,
+  // with that process's message.
+  int failure = 0;
+  std::string message;
+  try {
+    assembler_->assemble(state, internalForce, tangent);
+  } catch (const StepFailure& error) {
+    failure = 1 + static_cast<int>(error.kind());
+    message = error.what();
+  }
+  const auto [code, text] = group_->agree(failure, message);
+  if (code != 0) throw StepFailure(static_cast<FailureKind>(code - 1), text);
+  group_->sum(internalForce.data(), static_cast<std::size_t>(internalForce.size()));
+}
+
+void Model::sumOverProcesses(Eigen::VectorXd& values) {
+  if (group_) group_->sum(values.data(), static_cast<std::size_t>(values.size()));
 }
 
 NonlinearProblem::Augmentation Model::augment() {
@@ -48,6 +68,7 @@ NonlinearProblem::Augmentation Model::augment() {
 void Model::commitStep() {
   for (auto& set : elementSets_) set->commitStep();
   for (auto& pair : contactPairs_) pair->commitStep();
+  if (group_) shareElementHistory();
 }
 
 ContactChanges Model::takeContactChanges() {

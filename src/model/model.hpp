@@ -14,6 +14,7 @@
 #include "mesh/mesh.hpp"
 #include "model/boundary_conditions.hpp"
 #include "model/element_set.hpp"
+#include "parallel/process_group.hpp"
 #include "records/output_selection.hpp"
 #include "records/result_records.hpp"
 #include "solver/nonlinear_problem.hpp"
@@ -39,6 +40,17 @@ class Model : public NonlinearProblem {
   // Connected groups of elements, each named after its element blocks (model_state.cpp).
   std::vector<BodyNodes> bodies() const override;
   ContactChanges takeContactChanges() override;
+  void sumOverProcesses(Eigen::VectorXd& values) override;
+  std::vector<int> nodeOwners() const override { return nodeOwner_; }
+
+  // A run on several processes (model_distribution.cpp): partitions the nodes (PT-Scotch),
+  // gives each element to the process owning most of its nodes and each contact point to the
+  // owner of its first (slave) node. Every process keeps the whole mesh and state; it
+  // evaluates and adds only its elements, and evaluates every contact point (their history
+  // stays whole everywhere) but adds only its own. assemble() then sums the internal force over
+  // the processes and agrees on failures; commitStep() shares the element history. A no-op on
+  // one process. Returns a line describing the partition (empty on one process).
+  std::string distribute(ProcessGroup& group);
 
   // Restart (model_state.cpp): the committed element and contact history (displacement and
   // step size are left to the caller), and its restoration. restoreHistory throws
@@ -71,6 +83,7 @@ class Model : public NonlinearProblem {
 
  private:
   friend std::unique_ptr<Model> buildModel(const ProblemSpec& spec);
+  void shareElementHistory();
 
   ProblemSpec spec_;
   Mesh mesh_;
@@ -89,6 +102,11 @@ class Model : public NonlinearProblem {
   double energyTime_ = 0;
   double energyStepLength_ = 0;
   Eigen::VectorXd energyDisplacement_, energyForce_;
+  // Several processes (distribute()): the group, the owner of every node, and per element set
+  // whether this process owns each element. group_ is null on one process.
+  ProcessGroup* group_ = nullptr;
+  std::vector<int> nodeOwner_;
+  std::vector<std::vector<char>> ownsElement_;
 };
 
 // Loads the mesh and builds the model. Throws InputError naming the deck line of whatever does

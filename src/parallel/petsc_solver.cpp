@@ -12,10 +12,14 @@
 // nodes) and lets PETSc build the six rigid-body modes of the mesh as the near-nullspace
 // (MatNullSpaceCreateRigidBody on the current coordinates).
 //
-// Distribution. Rows are owned in contiguous ranges (ownedRows()); on one process that range
-// is everything and the matrix is MATAIJ = SeqAIJ. The preallocation already separates the
-// diagonal block from the off-process one (MatXAIJSetPreallocation with d_nnz and o_nnz), so a
-// distributed assembly only has to give each rank its node range; that part is not built yet.
+// Distribution (issue 17). On one process the rows are the equations (or nodal dofs, embedded)
+// in their order and the matrix is MATAIJ = SeqAIJ. On several processes (SystemLayout::
+// nodeOwner) the rows are renumbered so that each process owns a contiguous range holding the
+// dofs of its nodes (MATMPIAIJ, preallocated exactly from the replicated pattern: d_nnz and
+// o_nnz); each process adds the nonzero entries of its share of K (ADD_VALUES: PETSc sends the
+// entries of rows another process owns at assembly), sets the right-hand side rows it owns, and
+// receives the whole solution (VecScatterCreateToAll), so that Newton goes on identically on
+// every process.
 #include <fmt/format.h>
 #include <petscksp.h>
 
@@ -66,7 +70,11 @@ const char* methodName(PetscMethod method) {
 
 class PetscSolver final : public LinearSolver {
  public:
-  explicit PetscSolver(PetscMethod method) : method_(method) { petsc::ensureInitialized(); }
+  explicit PetscSolver(PetscMethod method) : method_(method) {
+    petsc::ensureInitialized();
+    MPI_Comm_rank(PETSC_COMM_WORLD, &rank_);
+    MPI_Comm_size(PETSC_COMM_WORLD, &processes_);
+  }
   ~PetscSolver() override { destroy(); }
   PetscSolver(const PetscSolver&) = delete;
   PetscSolver& operator=(const PetscSolver&) = delete;
@@ -138,7 +146,10 @@ class PetscSolver final : public LinearSolver {
     PetscScalar* values = nullptr;
     check(VecSet(rhs_, 0.0), "VecSet");
     check(VecGetArray(rhs_, &values), "VecGetArray");
-    for (Eigen::Index e = 0; e < equations_; ++e) values[row_[e]] = rhs[e];
+    const auto [first, last] = ownedRows();
+    for (Eigen::Index e = 0; e < equations_; ++e) {
+      if (row_[e] >= first && row_[e] < last) values[row_[e] - first] = rhs[e];
+    }
     check(VecRestoreArray(rhs_, &values), "VecRestoreArray");
     if (iterative()) {
       check(KSPSetTolerances(ksp_, relativeTolerance_, 0.0, 1e5, maxIterations_),
@@ -164,11 +175,20 @@ class PetscSolver final : public LinearSolver {
           "asked {:.3g})",
           name(), last_.reason, iterations, last_.relativeResidual, relativeTolerance_));
     }
+    // The whole solution on every process (on one process the solution vector is whole).
+    Vec whole = solution_;
+    if (distributed_) {
+      check(VecScatterBegin(toAll_, solution_, all_, INSERT_VALUES, SCATTER_FORWARD),
+            "VecScatterBegin");
+      check(VecScatterEnd(toAll_, solution_, all_, INSERT_VALUES, SCATTER_FORWARD),
+            "VecScatterEnd");
+      whole = all_;
+    }
     Eigen::VectorXd result(equations_);
     const PetscScalar* x = nullptr;
-    check(VecGetArrayRead(solution_, &x), "VecGetArrayRead");
+    check(VecGetArrayRead(whole, &x), "VecGetArrayRead");
     for (Eigen::Index e = 0; e < equations_; ++e) result[e] = x[row_[e]];
-    check(VecRestoreArrayRead(solution_, &x), "VecRestoreArrayRead");
+    check(VecRestoreArrayRead(whole, &x), "VecRestoreArrayRead");
     return result;
   }
 
@@ -183,8 +203,61 @@ class PetscSolver final : public LinearSolver {
   }
 
  private:
-  // The rows this process owns: all of them until the distributed issue splits them by nodes.
-  std::pair<PetscInt, PetscInt> ownedRows() const { return {0, size_}; }
+  // The rows this process owns.
+  std::pair<PetscInt, PetscInt> ownedRows() const {
+    return {firstRow_[static_cast<std::size_t>(rank_)],
+            firstRow_[static_cast<std::size_t>(rank_) + 1]};
+  }
+
+  // PETSc row of every equation (row_), the first row of every process (firstRow_) and, for
+  // the embedded system, the nodal dof of every row (dofOfRow_). On several processes the rows
+  // of process p are the dofs of the nodes it owns, node by node (block size 3 kept).
+  void numberRows(bool embed) {
+    const std::size_t nodes = static_cast<std::size_t>(layout_.coordinates.cols());
+    distributed_ = !layout_.nodeOwner.empty();
+    if (distributed_ && (layout_.nodeOwner.size() != nodes ||
+                         static_cast<Eigen::Index>(layout_.freeDofs.size()) != equations_)) {
+      throw std::invalid_argument("PETSc: SystemLayout does not fit the distributed system");
+    }
+    firstRow_.assign(static_cast<std::size_t>(processes_) + 1, size_);
+    firstRow_[0] = 0;
+    if (!distributed_) {
+      firstRow_.assign({0, size_});
+      for (Eigen::Index e = 0; e < equations_; ++e) {
+        row_[e] = embed ? layout_.freeDofs[static_cast<std::size_t>(e)] : static_cast<PetscInt>(e);
+        if (e > 0 && row_[e] <= row_[e - 1]) {
+          throw std::invalid_argument("PETSc: SystemLayout::freeDofs must ascend");
+        }
+      }
+      dofOfRow_.resize(embed ? static_cast<std::size_t>(size_) : 0);
+      for (std::size_t r = 0; r < dofOfRow_.size(); ++r) dofOfRow_[r] = static_cast<PetscInt>(r);
+      return;
+    }
+    constexpr PetscInt kNotARow = -1, kUnnumbered = -2;
+    std::vector<PetscInt> rowOfDof(3 * nodes, embed ? kUnnumbered : kNotARow);
+    for (int dof : layout_.freeDofs) rowOfDof[static_cast<std::size_t>(dof)] = kUnnumbered;
+    std::vector<std::vector<int>> nodesOf(static_cast<std::size_t>(processes_));
+    for (std::size_t n = 0; n < nodes; ++n) {
+      nodesOf[static_cast<std::size_t>(layout_.nodeOwner[n])].push_back(static_cast<int>(n));
+    }
+    PetscInt next = 0;
+    dofOfRow_.assign(static_cast<std::size_t>(size_), 0);
+    for (int p = 0; p < processes_; ++p) {
+      firstRow_[static_cast<std::size_t>(p)] = next;
+      for (int node : nodesOf[static_cast<std::size_t>(p)]) {
+        for (int c = 0; c < 3; ++c) {
+          PetscInt& row = rowOfDof[static_cast<std::size_t>(3 * node + c)];
+          if (row != kUnnumbered) continue;
+          dofOfRow_[static_cast<std::size_t>(next)] = 3 * node + c;
+          row = next++;
+        }
+      }
+    }
+    firstRow_[static_cast<std::size_t>(processes_)] = next;
+    for (Eigen::Index e = 0; e < equations_; ++e) {
+      row_[e] = rowOfDof[static_cast<std::size_t>(layout_.freeDofs[static_cast<std::size_t>(e)])];
+    }
+  }
 
   // CSR of the (embedded) system in PETSc's row numbering, and where each entry of Eigen's
   // column-major storage lands in it (K is not symmetric in general: CSR of K = CSC of K^T).
@@ -198,12 +271,7 @@ class PetscSolver final : public LinearSolver {
     size_ = embed ? static_cast<PetscInt>(3 * layout_.coordinates.cols())
                   : static_cast<PetscInt>(equations_);
     row_.resize(static_cast<std::size_t>(equations_));
-    for (Eigen::Index e = 0; e < equations_; ++e) {
-      row_[e] = embed ? layout_.freeDofs[static_cast<std::size_t>(e)] : static_cast<PetscInt>(e);
-      if (e > 0 && row_[e] <= row_[e - 1]) {
-        throw std::invalid_argument("PETSc: SystemLayout::freeDofs must ascend");
-      }
-    }
+    numberRows(embed);
     std::vector<bool> isFree(static_cast<std::size_t>(size_), !embed);
     for (PetscInt r : row_) isFree[static_cast<std::size_t>(r)] = true;
     // Row lengths: entries of column j of K go to row row_[j] (transposed storage).
@@ -222,7 +290,7 @@ class PetscSolver final : public LinearSolver {
     values_.assign(columns_.size(), 0.0);
     position_.assign(static_cast<std::size_t>(nonZeros_), 0);
     std::vector<PetscInt> next(rowStart_.begin(), rowStart_.end() - 1);
-    // Columns visited in ascending order, so every CSR row comes out sorted.
+    // Columns visited in ascending order: on one process every CSR row comes out sorted.
     for (Eigen::Index j = 0; j < equations_; ++j) {
       for (int k = matrix.outerIndexPtr()[j]; k < matrix.outerIndexPtr()[j + 1]; ++k) {
         const PetscInt r = row_[matrix.innerIndexPtr()[k]];
@@ -257,7 +325,21 @@ class PetscSolver final : public LinearSolver {
         MatXAIJSetPreallocation(matrix_, 1, diagonal.data(), offDiagonal.data(), nullptr, nullptr),
         "MatXAIJSetPreallocation");
     check(MatSetOption(matrix_, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE), "MatSetOption");
+    if (distributed_) {
+      // The whole pattern, once: a share adds only its nonzero entries, and the first final
+      // assembly would drop every preallocated entry not set by then.
+      for (PetscInt r = first; r < last; ++r) {
+        const PetscInt count = rowStart_[r + 1] - rowStart_[r];
+        check(MatSetValues(matrix_, 1, &r, count, columns_.data() + rowStart_[r],
+                           values_.data() + rowStart_[r], INSERT_VALUES),
+              "MatSetValues");
+      }
+      check(MatAssemblyBegin(matrix_, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
+      check(MatAssemblyEnd(matrix_, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+    }
     check(MatCreateVecs(matrix_, &solution_, &rhs_), "MatCreateVecs");
+    if (distributed_)
+      check(VecScatterCreateToAll(solution_, &toAll_, &all_), "VecScatterCreateToAll");
     if (embedded_) {
       check(VecDuplicate(solution_, &coordinates_), "VecDuplicate");
       check(VecSetBlockSize(coordinates_, 3), "VecSetBlockSize");
@@ -333,6 +415,7 @@ class PetscSolver final : public LinearSolver {
   }
 
   void setValues(const SparseMatrix& matrix) {
+    if (distributed_) return addShares(matrix);
     const double* entries = matrix.valuePtr();
     double diagonalSum = 0;
     for (Eigen::Index j = 0; j < equations_; ++j) {
@@ -356,13 +439,53 @@ class PetscSolver final : public LinearSolver {
     check(MatAssemblyEnd(matrix_, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
   }
 
+  // Several processes: each adds the nonzero entries of its share (the items it owns), column
+  // by column; PETSc sends those in rows another process owns at assembly.
+  void addShares(const SparseMatrix& matrix) {
+    check(MatZeroEntries(matrix_), "MatZeroEntries");
+    const double* entries = matrix.valuePtr();
+    double diagonalSum = 0;
+    std::vector<PetscInt> rows;
+    std::vector<PetscScalar> column;
+    for (Eigen::Index j = 0; j < equations_; ++j) {
+      rows.clear();
+      column.clear();
+      for (int k = matrix.outerIndexPtr()[j]; k < matrix.outerIndexPtr()[j + 1]; ++k) {
+        if (entries[k] == 0.0) continue;  // not in this share
+        rows.push_back(row_[matrix.innerIndexPtr()[k]]);
+        column.push_back(entries[k]);
+        if (matrix.innerIndexPtr()[k] == j) diagonalSum += std::abs(entries[k]);
+      }
+      const PetscInt c = row_[j];
+      if (!rows.empty()) {
+        check(MatSetValues(matrix_, static_cast<PetscInt>(rows.size()), rows.data(), 1, &c,
+                           column.data(), ADD_VALUES),
+              "MatSetValues");
+      }
+    }
+    // The identity rows of the embedding (see setValues), scaled by the mean over all shares.
+    double total = 0;
+    MPI_Allreduce(&diagonalSum, &total, 1, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
+    const double scale = equations_ > 0 && total > 0 ? total / equations_ : 1.0;
+    const auto [first, last] = ownedRows();
+    for (PetscInt r : identityRows_) {
+      if (r >= first && r < last)
+        check(MatSetValue(matrix_, r, r, scale, ADD_VALUES), "MatSetValue");
+    }
+    check(MatAssemblyBegin(matrix_, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
+    check(MatAssemblyEnd(matrix_, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+  }
+
   // Rigid-body modes of the current configuration (three translations, three rotations).
   void setNearNullSpace() {
     if (!embedded_) return;
     PetscScalar* x = nullptr;
     check(VecGetArray(coordinates_, &x), "VecGetArray");
     const auto [first, last] = ownedRows();
-    for (PetscInt r = first; r < last; ++r) x[r - first] = layout_.coordinates(r % 3, r / 3);
+    for (PetscInt r = first; r < last; ++r) {
+      const PetscInt dof = dofOfRow_[static_cast<std::size_t>(r)];
+      x[r - first] = layout_.coordinates(dof % 3, dof / 3);
+    }
     check(VecRestoreArray(coordinates_, &x), "VecRestoreArray");
     MatNullSpace modes = nullptr;
     check(MatNullSpaceCreateRigidBody(coordinates_, &modes), "MatNullSpaceCreateRigidBody");
@@ -388,6 +511,8 @@ class PetscSolver final : public LinearSolver {
     if (solution_) VecDestroy(&solution_);
     if (rhs_) VecDestroy(&rhs_);
     if (coordinates_) VecDestroy(&coordinates_);
+    if (toAll_) VecScatterDestroy(&toAll_);
+    if (all_) VecDestroy(&all_);
     factored_ = false;
   }
 
@@ -399,11 +524,17 @@ class PetscSolver final : public LinearSolver {
   Eigen::Index equations_ = 0, nonZeros_ = 0;
   bool embedded_ = false;
   PetscInt size_ = 0;
-  std::vector<PetscInt> row_;  // equation -> PETSc row
+  std::vector<PetscInt> row_;             // equation -> PETSc row
+  std::vector<PetscInt> firstRow_{0, 0};  // first row of each process, and the row count
+  std::vector<PetscInt> dofOfRow_;        // embedded system: nodal dof of each row
+  int rank_ = 0, processes_ = 1;
+  bool distributed_ = false;
   std::vector<PetscInt> rowStart_, columns_, position_, identityRows_;
   std::vector<PetscScalar> values_;
   Mat matrix_ = nullptr;
   Vec solution_ = nullptr, rhs_ = nullptr, coordinates_ = nullptr;
+  VecScatter toAll_ = nullptr;  // several processes: the solution to every process
+  Vec all_ = nullptr;
   KSP ksp_ = nullptr;
   bool factored_ = false;
 };

@@ -49,9 +49,13 @@ inline constexpr double kSingularPivotRatio = 1e-13;
 // Where the free equations sit in the mesh. An iterative backend builds from it the 3-dof node
 // blocks (hypre's nodal coarsening) and the near-nullspace of the rigid-body modes (AMG
 // interpolation); direct backends do not need it.
+// On several processes the matrix each process passes holds its share only (the system is the
+// sum of the shares, see NonlinearProblem) and right-hand sides are whole on every process;
+// rows are distributed by nodeOwner.
 struct SystemLayout {
   std::vector<int> freeDofs;     // equation -> nodal dof 3 * node + component, ascending
   Eigen::Matrix3Xd coordinates;  // current nodal coordinates (all nodes)
+  std::vector<int> nodeOwner;    // process owning each node; empty on one process
 };
 
 // A Krylov solve that stalled or diverged: the caller redoes the solve with a direct solver.

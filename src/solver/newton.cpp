@@ -121,11 +121,10 @@ void Newton::assembleAt(const Eigen::VectorXd& displacement, const NewtonStep& s
 }
 
 double Newton::stiffnessForceScale() const {
-  double diagonal = 0;
-  for (Eigen::Index k = 0; k < tangent_.free.outerSize(); ++k)
-    diagonal = std::max(diagonal, std::abs(tangent_.free.coeff(k, k)));
+  Eigen::VectorXd diagonal = tangent_.free.diagonal();
+  problem_.sumOverProcesses(diagonal);  // each process holds a share of K (several processes)
   const double extent = current_.size() ? current_.cwiseAbs().maxCoeff() : 0.0;
-  return diagonal * extent;
+  return (diagonal.size() ? diagonal.cwiseAbs().maxCoeff() : 0.0) * extent;
 }
 
 Eigen::VectorXd Newton::freeResidual() const {
@@ -239,7 +238,9 @@ NewtonResult Newton::solve(const NewtonStep& step, const NewtonSpec& spec,
       changes = problem_.takeContactChanges();
       rhs = -freeResidual();
       if (iteration == 1 && dofs.numPrescribed() > 0) {
-        rhs.noalias() -= tangent_.coupling * prescribedIncrement;
+        Eigen::VectorXd prescribedForce = tangent_.coupling * prescribedIncrement;
+        problem_.sumOverProcesses(prescribedForce);
+        rhs -= prescribedForce;
       }
     } catch (const StepFailure& failure) {
       return failed(iteration, failure.kind(), failure.what());
@@ -276,7 +277,7 @@ NewtonResult Newton::solve(const NewtonStep& step, const NewtonSpec& spec,
         observer_.note(fmt::format("tangent of step {} iteration {} written to {}", step.step,
                                    iteration, dump.directory));
       }
-      linear_.setLayout({dofs.freeDofs(), current_});
+      linear_.setLayout({dofs.freeDofs(), current_, problem_.nodeOwners()});
       linear_.factorize(tangent_);
       if (linear_.iterative()) {
         if (iteration > 1) {

@@ -47,6 +47,13 @@ class NonlinearProblem {
   virtual std::vector<BodyNodes> bodies() const { return {}; }
   // Contact points that changed state or master segment since the last call (diagnostics).
   virtual ContactChanges takeContactChanges() { return {}; }
+
+  // A run on several processes (`mpirun`): assemble() returns the whole internal force on
+  // every process but each process's tangent holds only the items it owns (the tangent is
+  // the sum over processes; the linear solver adds the shares). A vector computed from the
+  // tangent is summed here. The owner process of every node; empty on one process.
+  virtual void sumOverProcesses(Eigen::VectorXd&) {}
+  virtual std::vector<int> nodeOwners() const { return {}; }
 };
 
 // Receives what the stepper produces; the model and the results writer live behind it.

@@ -43,16 +43,27 @@ void load() {
   if (!plugin.make || !plugin.finalize) loadError = path + ": entry points missing";
 }
 
+// `what` names what needs the plugin, `instead` what to do without it.
+void loadOrThrow(const char* what, const char* instead) {
+  std::call_once(loadOnce, load);
+  if (!loadError.empty()) {
+    throw std::runtime_error(std::string(what) + " not available (" + loadError + "); " + instead +
+                             "install PETSc with scripts/install-deps.sh and rebuild");
+  }
+}
+
 }  // namespace
 
 std::unique_ptr<LinearSolver> makePetscSolver(PetscMethod method) {
-  std::call_once(loadOnce, load);
-  if (!loadError.empty()) {
-    throw std::runtime_error("the PETSc solvers are not available (" + loadError +
-                             "); use solver=cholmod or umfpack, or install PETSc with "
-                             "scripts/install-deps.sh and rebuild");
-  }
+  loadOrThrow("the PETSc solvers are", "use solver=cholmod or umfpack, or ");
   return std::unique_ptr<LinearSolver>(plugin.make(static_cast<int>(method)));
+}
+
+void* petscPluginEntry(const char* name) {
+  loadOrThrow("runs on several processes (MPI) are", "run on one process, or ");
+  void* entry = dlsym(plugin.handle, name);
+  if (!entry) throw std::runtime_error(std::string("the PETSc plugin lacks the entry ") + name);
+  return entry;
 }
 
 namespace petsc {

@@ -65,14 +65,16 @@ TangentSolver::~TangentSolver() = default;
 
 void TangentSolver::setLayout(const SystemLayout& layout) {
   layout_ = layout;
+  distributed_ = !layout_.nodeOwner.empty();
   if (petsc_.solver) petsc_.solver->setLayout(layout_);
+  if (distributedDirect_.solver) distributedDirect_.solver->setLayout(layout_);
 }
 
 void TangentSolver::releaseOthers(const Backend& keep) {
   // Only one factor is alive at a time: the backends not used now give their numeric factor
   // back before the new one is built (peak memory of a run that switches between backends is
   // one factor, not two; the symbolic analyses stay).
-  for (Backend* backend : {&symmetric_, &general_, &petsc_}) {
+  for (Backend* backend : {&symmetric_, &general_, &petsc_, &distributedDirect_}) {
     if (backend != &keep && backend->solver) backend->solver->releaseFactor();
   }
 }
@@ -90,14 +92,17 @@ void TangentSolver::factorizeWith(Backend& backend, const SystemMatrices& system
 
 bool TangentSolver::usesPetsc(Eigen::Index size) {
   using Method = LinearSolverSpec::Method;
-  const bool petsc = method_ == Method::Mumps || method_ == Method::SuperluDist ||
-                     method_ == Method::Amg || method_ == Method::Gamg ||
-                     (method_ == Method::Auto && size >= kIterativeBreakEven);
+  const bool iterativeBySize = method_ == Method::Auto && size >= kIterativeBreakEven;
+  // On several processes every solve is PETSc's: CHOLMOD and UMFPACK work on one process, so
+  // auto below the break-even, cholmod and umfpack mean MUMPS (distributed LU) there.
+  const bool petsc = distributed_ || method_ == Method::Mumps || method_ == Method::SuperluDist ||
+                     method_ == Method::Amg || method_ == Method::Gamg || iterativeBySize;
   if (petsc && !petsc_.solver) {
-    const PetscMethod petscMethod = method_ == Method::Mumps         ? PetscMethod::Mumps
-                                    : method_ == Method::SuperluDist ? PetscMethod::SuperluDist
-                                    : method_ == Method::Amg         ? PetscMethod::BoomerAmg
-                                                                     : PetscMethod::Gamg;
+    const PetscMethod petscMethod = method_ == Method::SuperluDist ? PetscMethod::SuperluDist
+                                    : method_ == Method::Amg       ? PetscMethod::BoomerAmg
+                                    : method_ == Method::Gamg || iterativeBySize
+                                        ? PetscMethod::Gamg
+                                        : PetscMethod::Mumps;
     petsc_.solver = makePetscSolver(petscMethod);
     petsc_.solver->setLayout(layout_);
   }
@@ -107,11 +112,13 @@ bool TangentSolver::usesPetsc(Eigen::Index size) {
               : (method_ == Method::Umfpack ? std::string("UMFPACK") : "CHOLMOD/UMFPACK");
     choice_ = fmt::format("{} -> {}", methodSpelling(method_), backend);
     if (method_ == Method::Auto) {
-      choice_ +=
-          fmt::format(" ({} equations {} {})", size, petsc ? ">=" : "<", kIterativeBreakEven);
+      choice_ += fmt::format(" ({} equations {} {})", size,
+                             size >= kIterativeBreakEven ? ">=" : "<", kIterativeBreakEven);
     }
+    if (distributed_) choice_ += " on several processes";
     if (petsc_.solver && petsc_.solver->iterative()) {
-      choice_ += "; a stalled Krylov solve falls back to CHOLMOD/UMFPACK";
+      choice_ += fmt::format("; a stalled Krylov solve falls back to {}",
+                             distributed_ ? "MUMPS" : "CHOLMOD/UMFPACK");
     }
     if (notify_) notify_("linear solver: " + choice_);
   }
@@ -119,6 +126,14 @@ bool TangentSolver::usesPetsc(Eigen::Index size) {
 }
 
 void TangentSolver::factorizeDirect(const SystemMatrices& system) {
+  if (distributed_) {
+    if (!distributedDirect_.solver) {
+      distributedDirect_.solver = makePetscSolver(PetscMethod::Mumps);
+      distributedDirect_.solver->setLayout(layout_);
+    }
+    factorizeWith(distributedDirect_, system);
+    return;
+  }
   std::string choleskyFailure;
   if (system.symmetric && !choleskyRejected_ && method_ != LinearSolverSpec::Method::Umfpack) {
     try {
@@ -162,10 +177,12 @@ Eigen::VectorXd TangentSolver::solve(const Eigen::VectorXd& rhs) {
   try {
     solution = active_->solve(rhs);
   } catch (const KrylovFailure& failure) {
-    // A Krylov solve that stalled, or a PETSc direct solve that missed: CHOLMOD/UMFPACK.
+    // A Krylov solve that stalled, or a PETSc direct solve that missed: CHOLMOD/UMFPACK (MUMPS
+    // on several processes).
     ++krylovFallbacks_;
     if (notify_) {
-      notify_(fmt::format("{}; solving this iteration with CHOLMOD/UMFPACK", failure.what()));
+      notify_(fmt::format("{}; solving this iteration with {}", failure.what(),
+                          distributed_ ? "MUMPS" : "CHOLMOD/UMFPACK"));
     }
     factorizeDirect(*system_);
     solution = active_->solve(rhs);
@@ -181,6 +198,7 @@ LinearSolverStatistics TangentSolver::statistics() const {
   LinearSolverStatistics total = symmetric_.solver->statistics();
   total += general_.solver->statistics();
   if (petsc_.solver) total += petsc_.solver->statistics();
+  if (distributedDirect_.solver) total += distributedDirect_.solver->statistics();
   total.krylovFallbacks = krylovFallbacks_;
   return total;
 }

@@ -76,6 +76,9 @@ class TangentSolver {
   Backend symmetric_;
   Backend general_;
   Backend petsc_;  // created on first use
+  // Several processes: MUMPS for the fallback of a failed Krylov solve (created on first use).
+  Backend distributedDirect_;
+  bool distributed_ = false;  // the layout distributes the rows over several processes
   LinearSolver* active_ = nullptr;
   const SystemMatrices* system_ = nullptr;
   bool choleskyRejected_ = false;

@@ -1,0 +1,108 @@
+// Model::distribute and the sharing of element history: who evaluates what in a run on several
+// processes (issue 17). Every process holds the whole mesh and the whole state (the mesh is
+// replicated, as MOOSE's default mesh is; docs/performance/distributed.md says up to which size
+// that holds); only the element work and the rows of the linear system are divided.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <numeric>
+
+#include "model/model.hpp"
+
+namespace cc {
+
+namespace {
+
+// Nodes sharing an element are neighbours (the graph of the stiffness matrix's node blocks).
+void nodeGraph(const std::vector<std::unique_ptr<ElementSet>>& sets, int numNodes,
+               std::vector<int>& offsets, std::vector<int>& adjacency) {
+  std::vector<std::vector<int>> neighbours(static_cast<std::size_t>(numNodes));
+  for (const auto& set : sets) {
+    for (std::size_t e = 0; e < set->itemCount(); ++e) {
+      const std::span<const int> nodes = set->itemNodes(e);
+      for (int a : nodes) {
+        for (int b : nodes) {
+          if (a != b) neighbours[static_cast<std::size_t>(a)].push_back(b);
+        }
+      }
+    }
+  }
+  offsets.assign(1, 0);
+  adjacency.clear();
+  for (auto& list : neighbours) {
+    std::sort(list.begin(), list.end());
+    list.erase(std::unique(list.begin(), list.end()), list.end());
+    adjacency.insert(adjacency.end(), list.begin(), list.end());
+    offsets.push_back(static_cast<int>(adjacency.size()));
+    std::vector<int>().swap(list);
+  }
+}
+
+// The process owning most of an element's nodes (the lowest such rank on a tie).
+int elementOwner(std::span<const int> nodes, const std::vector<int>& nodeOwner,
+                 std::vector<int>& votes) {
+  std::fill(votes.begin(), votes.end(), 0);
+  for (int node : nodes)
+    ++votes[static_cast<std::size_t>(nodeOwner[static_cast<std::size_t>(node)])];
+  return static_cast<int>(std::max_element(votes.begin(), votes.end()) - votes.begin());
+}
+
+}  // namespace
+
+std::string Model::distribute(ProcessGroup& group) {
+  if (group.size() == 1) return {};
+  group_ = &group;
+  std::vector<int> offsets, adjacency;
+  nodeGraph(elementSets_, mesh_.numNodes(), offsets, adjacency);
+  nodeOwner_ = group.partition(offsets, adjacency);
+  const std::size_t processes = static_cast<std::size_t>(group.size());
+  std::vector<int> votes(processes), elementsOf(processes, 0), nodesOf(processes, 0);
+  for (int owner : nodeOwner_) ++nodesOf[static_cast<std::size_t>(owner)];
+  ownsElement_.clear();
+  for (const auto& set : elementSets_) {
+    std::vector<char>& owns = ownsElement_.emplace_back(set->itemCount(), 0);
+    for (std::size_t e = 0; e < set->itemCount(); ++e) {
+      const int owner = elementOwner(set->itemNodes(e), nodeOwner_, votes);
+      ++elementsOf[static_cast<std::size_t>(owner)];
+      owns[e] = owner == group.rank();
+    }
+  }
+  // Contributions are the element sets, then the contact pairs (model_builder.cpp).
+  const std::size_t numSets = elementSets_.size();
+  assembler_->setItemFilter([this, numSets](std::size_t contribution, std::size_t item) {
+    if (contribution < numSets) {
+      return ownsElement_[contribution][item] ? ItemRole::Assemble : ItemRole::Skip;
+    }
+    const contact::ContactPair& pair = *contactPairs_[contribution - numSets];
+    const int slave = pair.itemNodes(item)[0];
+    return nodeOwner_[static_cast<std::size_t>(slave)] == group_->rank() ? ItemRole::Assemble
+                                                                         : ItemRole::EvaluateOnly;
+  });
+  const auto [fewestNodes, mostNodes] = std::minmax_element(nodesOf.begin(), nodesOf.end());
+  const auto [fewestElements, mostElements] =
+      std::minmax_element(elementsOf.begin(), elementsOf.end());
+  return fmt::format(
+      "{} processes (PT-Scotch partition): {}-{} nodes and {}-{} elements per process, whole "
+      "mesh on each",
+      group.size(), *fewestNodes, *mostNodes, *fewestElements, *mostElements);
+}
+
+// The committed history of an element lives on its owner; after a step every process gets it
+// (stress output, energy and restart read the whole history; a cut-back restores it).
+void Model::shareElementHistory() {
+  for (std::size_t s = 0; s < elementSets_.size(); ++s) {
+    ElementSet& set = *elementSets_[s];
+    std::vector<double> history = set.exportHistory();
+    if (history.empty()) continue;
+    const std::size_t perElement = history.size() / set.itemCount();
+    for (std::size_t e = 0; e < set.itemCount(); ++e) {
+      if (!ownsElement_[s][e]) {
+        std::fill_n(history.begin() + static_cast<std::ptrdiff_t>(e * perElement), perElement, 0.0);
+      }
+    }
+    group_->sum(history.data(), history.size());
+    set.importHistory(history);
+  }
+}
+
+}  // namespace cc
