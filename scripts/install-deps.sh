@@ -7,8 +7,9 @@ packages=(
   build-essential cmake ninja-build pkg-config git
   libeigen3-dev libsuitesparse-dev libgmsh-dev gmsh
   # PETSc with MUMPS, hypre, SuperLU_dist (issue 13); it links the Open MPI HDF5, which the
-  # results writer therefore uses as well (one HDF5 library per process)
-  libpetsc-real3.18-dev libhdf5-openmpi-dev
+  # results writer therefore uses as well (one HDF5 library per process); mpirun for runs on
+  # several processes (issue 17)
+  libpetsc-real3.18-dev libhdf5-openmpi-dev openmpi-bin
   libmuparser-dev libcli11-dev libfmt-dev libgtest-dev libgmock-dev
   libopenblas0-serial
   python3-h5py python3-matplotlib python3-numpy python3-scipy

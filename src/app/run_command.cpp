@@ -421,6 +421,11 @@ int runCommand(const RunOptions& options) {
         summary.stepsConverged, summary.totalIterations, discarded, summary.totalCutbacks, seconds,
         path));
   }
+  if (group.size() > 1 && !options.quiet) {
+    printOut(fmt::format(
+        "contact points whose master segment moved to another process: {} (summed over steps)\n",
+        model->masterOwnerChanges()));
+  }
   if (!references->empty()) {
     const verification::RunCost cost{seconds, summary.totalIterations, summary.stepsConverged};
     const auto errors = references->results();

@@ -54,6 +54,15 @@ class ContactPair : public Contribution {
   std::size_t itemCount() const override { return points_.size(); }
   std::span<const int> itemNodes(std::size_t item) const override { return points_[item].nodes; }
   std::uint64_t topologyVersion() const override { return topologyVersion_; }
+  // A node of the master segment point `item` projects onto now; -1 when it has none (open
+  // search, rigid master). Runs on several processes count the points whose master segment
+  // moved to another process (model_distribution.cpp).
+  int masterNodeOf(std::size_t item) const {
+    const PairPoint& point = points_[item];
+    return point.segment >= 0 && point.layout.masterCount > 0
+               ? point.nodes[static_cast<std::size_t>(point.layout.masterLocal[0])]
+               : -1;
+  }
   LocalStatus evaluate(std::size_t item, const AssemblyState& state, Eigen::VectorXd& force,
                        Eigen::MatrixXd* tangent) override;
   bool tangentSymmetric() const override;

@@ -68,7 +68,10 @@ NonlinearProblem::Augmentation Model::augment() {
 void Model::commitStep() {
   for (auto& set : elementSets_) set->commitStep();
   for (auto& pair : contactPairs_) pair->commitStep();
-  if (group_) shareElementHistory();
+  if (group_) {
+    shareElementHistory();
+    countMasterOwnerChanges();
+  }
 }
 
 ContactChanges Model::takeContactChanges() {

@@ -51,6 +51,9 @@ class Model : public NonlinearProblem {
   // the processes and agrees on failures; commitStep() shares the element history. A no-op on
   // one process. Returns a line describing the partition (empty on one process).
   std::string distribute(ProcessGroup& group);
+  // Several processes: converged steps in which a contact point's master segment belonged to
+  // another process than at the step before, summed over points and steps (diagnostics).
+  long masterOwnerChanges() const { return masterOwnerChanges_; }
 
   // Restart (model_state.cpp): the committed element and contact history (displacement and
   // step size are left to the caller), and its restoration. restoreHistory throws
@@ -84,6 +87,7 @@ class Model : public NonlinearProblem {
  private:
   friend std::unique_ptr<Model> buildModel(const ProblemSpec& spec);
   void shareElementHistory();
+  void countMasterOwnerChanges();
 
   ProblemSpec spec_;
   Mesh mesh_;
@@ -107,6 +111,8 @@ class Model : public NonlinearProblem {
   ProcessGroup* group_ = nullptr;
   std::vector<int> nodeOwner_;
   std::vector<std::vector<char>> ownsElement_;
+  std::vector<std::vector<int>> masterOwner_;  // per pair and point at the last commit, -1 none
+  long masterOwnerChanges_ = 0;
 };
 
 // Loads the mesh and builds the model. Throws InputError naming the deck line of whatever does

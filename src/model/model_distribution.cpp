@@ -105,4 +105,19 @@ void Model::shareElementHistory() {
   }
 }
 
+void Model::countMasterOwnerChanges() {
+  masterOwner_.resize(contactPairs_.size());
+  for (std::size_t p = 0; p < contactPairs_.size(); ++p) {
+    const contact::ContactPair& pair = *contactPairs_[p];
+    std::vector<int>& owners = masterOwner_[p];
+    owners.resize(pair.itemCount(), -1);
+    for (std::size_t item = 0; item < pair.itemCount(); ++item) {
+      const int node = pair.masterNodeOf(item);
+      const int owner = node >= 0 ? nodeOwner_[static_cast<std::size_t>(node)] : -1;
+      if (owner >= 0 && owners[item] >= 0 && owner != owners[item]) ++masterOwnerChanges_;
+      owners[item] = owner;
+    }
+  }
+}
+
 }  // namespace cc

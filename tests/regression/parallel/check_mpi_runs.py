@@ -1,0 +1,221 @@
+#!/usr/bin/python3
+"""Runs on several processes (issue 17): `mpirun -np N covcontact run DECK` against the serial run.
+
+--case crossing: decks/block_crossing_partition.deck (a block split by the partition dragged
+  along a base, with cut-backs and an inverted element on the way) on 2 processes: the serial
+  run's step times and iteration counts exactly, forces and displacements to 1e-8, and at least
+  one contact point whose master segment moved to another process.
+--case restart: input/stress/restart_6_1.deck on 2 processes stopped by SIGTERM (sent to the
+  processes, as a scheduler does) after step 8: exit 4 as in a serial run, every reported step
+  in the file; continued with --restart on 1 and on 3 processes, every remaining step as the
+  uninterrupted serial run (iterations exactly, forces to 1e-8).
+--case errors: a deck error on 2 processes exits with the serial exit code and is reported
+  once; a persistent inverted element (input/stress/inverted_element_persistent.deck) exits
+  with the serial code, keeps the same converged steps and names the element once; SIGKILL of
+  one process ends every process (no hang) and leaves every reported step readable.
+
+Usage: check_mpi_runs.py --covcontact BIN --mpirun MPIRUN --source DIR --scratch DIR --case C
+"""
+import argparse
+import os
+import re
+import shutil
+import signal
+import subprocess
+import sys
+import time
+
+import h5py
+import numpy as np
+
+TIMEOUT_S = 240  # one command on a loaded 2-core machine
+TOLERANCE = 1e-8  # serial against distributed: different summation order and solver only
+EXIT = {"ok": 0, "input": 2, "interrupted": 4}  # `covcontact --help`
+CONVERGED_STEP = re.compile(r"step (\d+)/\d+\s+t = \S+\s+\d+ iterations")
+
+
+def fail(message):
+    print("FAIL " + message)
+    sys.exit(1)
+
+
+def check(condition, message):
+    if not condition:
+        fail(message)
+
+
+def mpirun(args, processes):
+    # Root in CI containers; more processes than cores for -np 3 on 2 cores.
+    return [args.mpirun, "--allow-run-as-root", "--oversubscribe", "-np", str(processes)]
+
+
+def covcontact(args, processes, *words):
+    prefix = mpirun(args, processes) if processes > 1 else []
+    return prefix + [args.covcontact, *words]
+
+
+def run(args, processes, *words):
+    return subprocess.run(covcontact(args, processes, *words), cwd=args.scratch,
+                          capture_output=True, text=True, timeout=TIMEOUT_S)
+
+
+def run_ok(args, processes, *words):
+    result = run(args, processes, *words)
+    check(result.returncode == EXIT["ok"],
+          f"{' '.join(result.args)}: exit {result.returncode}\n{result.stdout}\n{result.stderr}")
+    return result
+
+
+def step_names(h5):
+    return sorted(h5["steps"].keys(), key=lambda name: int(h5["steps"][name].attrs["step"]))
+
+
+def compare_steps(reference_path, results_path, first_step=1):
+    """Steps >= first_step of a results file against the reference; returns (steps, worst)."""
+    with h5py.File(reference_path, "r") as reference, h5py.File(results_path, "r") as results:
+        names = step_names(results)
+        expected = [name for name in step_names(reference)
+                    if int(reference["steps"][name].attrs["step"]) >= first_step]
+        check(names == expected, f"{results_path}: steps {names[:3]}..., expected {expected[:3]}...")
+        worst = 0.0
+        for name in names:
+            a, b = reference["steps"][name], results["steps"][name]
+            for attribute in ("time", "iterations", "cutbacks"):
+                check(a.attrs[attribute] == b.attrs[attribute],
+                      f"{results_path} step {name}: {attribute} {b.attrs[attribute]}, serial "
+                      f"{a.attrs[attribute]}")
+            for field in ("set_reactions", "contact/interface/total_force", "displacement"):
+                want, got = a[field][...], b[field][...]
+                error = np.abs(got - want).max() / max(np.abs(want).max(), 1e-300)
+                worst = max(worst, error)
+                check(error <= TOLERANCE, f"{results_path} step {name}: {field} differs by {error:.2e}")
+        check(results["summary"].attrs["outcome"] == "completed", f"{results_path}: not completed")
+    return len(names), worst
+
+
+def crossing_case(args):
+    deck = os.path.join(args.source, "tests/regression/parallel/decks/block_crossing_partition.deck")
+    serial = os.path.join(args.scratch, "serial.h5")
+    distributed = os.path.join(args.scratch, "two.h5")
+    run_ok(args, 1, "run", deck, "-o", serial, "-q")
+    result = run_ok(args, 2, "run", deck, "-o", distributed)
+    count, worst = compare_steps(serial, distributed)
+    moved = [line for line in result.stdout.splitlines()
+             if line.startswith("contact points whose master segment moved")]
+    check(len(moved) == 1, f"no line on master segments changing process:\n{result.stdout}")
+    crossings = int(moved[0].split(":")[1].split()[0])
+    check(crossings > 0, "no contact point slid onto another process's master segments")
+    print(f"2 processes: {count} steps as serial (largest difference {worst:.1e}); "
+          f"{crossings} point-steps onto another process's master segments")
+
+
+def rank_processes(launcher):
+    """The covcontact processes mpirun started (its children)."""
+    listed = subprocess.run(["pgrep", "-P", str(launcher.pid)], capture_output=True, text=True)
+    return [int(pid) for pid in listed.stdout.split()]
+
+
+def signal_after_step(args, processes, deck, results, after_step, signal_number, only_rank=None):
+    """Starts a distributed run and signals its processes (all, or one) once rank 0 reports
+    `after_step`; returns (exit code, highest reported step, output)."""
+    launcher = subprocess.Popen(covcontact(args, processes, "run", deck, "-o", results),
+                                cwd=args.scratch, stdout=subprocess.PIPE,
+                                stderr=subprocess.STDOUT, text=True)
+    reported, output = 0, []
+    for line in launcher.stdout:
+        output.append(line)
+        # Rank 0's output reaches mpirun through a terminal, so progress comes as \r-separated
+        # updates; "step k/n  t = ..  m iterations" says step k converged (and is written).
+        for update in line.split("\r"):
+            converged = CONVERGED_STEP.match(update.strip())
+            if converged:
+                reported = max(reported, int(converged.group(1)))
+        if reported >= after_step:
+            ranks = sorted(rank_processes(launcher))
+            check(len(ranks) == processes, f"found {len(ranks)} processes under mpirun")
+            for pid in ranks if only_rank is None else [ranks[only_rank]]:
+                os.kill(pid, signal_number)
+            break
+    output += launcher.stdout.readlines()
+    launcher.wait(timeout=TIMEOUT_S)
+    return launcher.returncode, reported, "".join(output)
+
+
+def restart_case(args):
+    deck = os.path.join(args.source, "input/stress/restart_6_1.deck")
+    reference = os.path.join(args.scratch, "uninterrupted.h5")
+    interrupted = os.path.join(args.scratch, "interrupted.h5")
+    run_ok(args, 1, "run", deck, "-o", reference, "-q")
+    code, reported, output = signal_after_step(args, 2, deck, interrupted, 8, signal.SIGTERM)
+    check(code == EXIT["interrupted"], f"SIGTERM on 2 processes: exit {code}\n{output}")
+    with h5py.File(interrupted, "r") as h5:
+        stored = [int(h5["steps"][name].attrs["step"]) for name in step_names(h5)]
+        check(h5["summary"].attrs["outcome"] == "interrupted", "outcome is not 'interrupted'")
+    check(stored == list(range(1, len(stored) + 1)) and len(stored) >= reported,
+          f"stored steps {stored}, reported {reported}")
+    print(f"2 processes stopped by SIGTERM after step {stored[-1]}: exit 4, steps 1..{stored[-1]} kept")
+    for processes in (1, 3):
+        continued = os.path.join(args.scratch, f"continued_{processes}.h5")
+        run_ok(args, processes, "run", deck, "-o", continued, "--restart", interrupted, "-q")
+        count, worst = compare_steps(reference, continued, stored[-1] + 1)
+        print(f"  continued on {processes} process(es): {count} steps as the uninterrupted serial "
+              f"run (largest difference {worst:.1e})")
+
+
+def errors_case(args):
+    bad = os.path.join(args.source, "tests/decks/bad/unknown_keyword.deck")
+    serial, two = run(args, 1, "run", bad, "-o", "bad1.h5"), run(args, 2, "run", bad, "-o", "bad2.h5")
+    check(serial.returncode == EXIT["input"] and two.returncode == serial.returncode,
+          f"deck error: exit {two.returncode} on 2 processes, {serial.returncode} serial")
+    message = serial.stderr.strip().splitlines()[0]
+    check((two.stdout + two.stderr).count(message) == 1,
+          f"the deck error is not reported exactly once:\n{two.stdout}{two.stderr}")
+    print(f"deck error: exit {two.returncode} on 2 processes, reported once: {message}")
+
+    deck = os.path.join(args.source, "input/stress/inverted_element_persistent.deck")
+    serial = run(args, 1, "run", deck, "-o", "inverted1.h5")
+    two = run(args, 2, "run", deck, "-o", "inverted2.h5")
+    check(serial.returncode != 0 and two.returncode == serial.returncode,
+          f"inverted element: exit {two.returncode} on 2 processes, {serial.returncode} serial")
+    with h5py.File(os.path.join(args.scratch, "inverted1.h5"), "r") as a, \
+            h5py.File(os.path.join(args.scratch, "inverted2.h5"), "r") as b:
+        check(step_names(a) == step_names(b) and len(step_names(a)) >= 1,
+              f"kept steps {step_names(b)}, serial {step_names(a)}")
+    final = [line for line in serial.stderr.splitlines() if line.startswith("covcontact: run")]
+    check(len(final) == 1 and (two.stdout + two.stderr).count(final[0]) == 1,
+          f"the failure is not reported once:\n{two.stderr}")
+    print(f"inverted element: exit {two.returncode} as serial, same kept steps, reported once")
+
+    deck = os.path.join(args.source, "input/stress/restart_6_1.deck")
+    killed = os.path.join(args.scratch, "killed.h5")
+    start = time.monotonic()
+    code, reported, output = signal_after_step(args, 2, deck, killed, 5, signal.SIGKILL, only_rank=1)
+    seconds = time.monotonic() - start
+    check(code != 0, "the run survived the SIGKILL of a process")
+    leftover = subprocess.run(["pgrep", "-f", killed], capture_output=True, text=True).stdout
+    check(not leftover.strip(), f"processes left after the kill: {leftover}")
+    with h5py.File(killed, "r") as h5:
+        stored = [int(h5["steps"][name].attrs["step"]) for name in step_names(h5)]
+        for name in step_names(h5):
+            check(np.all(np.isfinite(h5["steps"][name]["displacement"][...])), f"step {name} unreadable")
+    check(stored == list(range(1, len(stored) + 1)) and len(stored) >= reported,
+          f"after SIGKILL of rank 1: stored {stored}, reported {reported}")
+    print(f"SIGKILL of rank 1 after step {reported}: every process ended (exit {code}, "
+          f"{seconds:.1f} s), steps 1..{stored[-1]} readable")
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--covcontact", required=True)
+    parser.add_argument("--mpirun", required=True)
+    parser.add_argument("--source", required=True, help="the source tree")
+    parser.add_argument("--scratch", required=True)
+    parser.add_argument("--case", required=True, choices=["crossing", "restart", "errors"])
+    args = parser.parse_args()
+    shutil.rmtree(args.scratch, ignore_errors=True)
+    os.makedirs(args.scratch)
+    {"crossing": crossing_case, "restart": restart_case, "errors": errors_case}[args.case](args)
+
+
+if __name__ == "__main__":
+    main()
