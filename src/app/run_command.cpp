@@ -75,15 +75,19 @@ class RunObserver : public StepObserver {
         group_(group),
         references_(references) {}
 
+  // The processes that do not write say nothing either: rank 0 reports for all.
   void iteration(const IterationRecord& record) override {
-    if (writer_) writer_->appendIteration(record);
+    if (!writer_) return;
+    writer_->appendIteration(record);
     progress_.iteration(record);
   }
   void cutback(const CutbackRecord& record) override {
-    if (writer_) writer_->appendCutback(record);
+    if (!writer_) return;
+    writer_->appendCutback(record);
     progress_.cutback(record);
   }
   void note(const std::string& line) override {
+    if (!writer_) return;
     if (line.rfind("linear solver: ", 0) == 0) linearSolver_ = line.substr(15);
     progress_.note(line);
   }
