@@ -20,6 +20,8 @@ struct RunOptions {
   std::string dumpDirectory;             // --dump-dir; empty = beside the results file
   bool newtonLog = false;                // --newton-log: one line per Newton iteration
   std::string checkTangent;              // --check-tangent STEP:ITERATION (diagnostics)
+  std::string solver;                    // --solver: overrides the deck's solve solver=
+  bool cost = false;                     // --cost: print where the time went (JSON)
 };
 
 struct SolveDumpOptions {

@@ -14,6 +14,7 @@
 
 #include "app/commands.hpp"
 #include "common/errors.hpp"
+#include "deck/spec_choices.hpp"
 #include "parallel/process_group.hpp"
 #include "solver/petsc_loader.hpp"
 
@@ -158,6 +159,14 @@ int main(int argc, char** argv) {
       "--dump-dir", run.dumpDirectory,
       "Directory in which --dump-tangent writes <results stem>_tangent_STEP_ITER "
       "(default: the results file's)");
+  runCommand
+      ->add_option("--solver", run.solver,
+                   "Linear solver, overriding the deck's `solve solver=`: auto, cholmod, "
+                   "umfpack, mumps, superlu_dist, amg or gamg")
+      ->check(CLI::IsMember(cc::deck::choiceNames(cc::deck::linearSolverMethods())));
+  runCommand->add_flag("--cost", run.cost,
+                       "Print at the end one line `cost: {json}` with where the time went (per "
+                       "process under mpirun), peak memory and data moved between processes");
   runCommand
       ->add_option("--from-step", run.restartStep,
                    "Step of the --restart file to continue from (default: its last step)")

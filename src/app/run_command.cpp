@@ -22,6 +22,7 @@
 #include "app/restart.hpp"
 #include "common/errors.hpp"
 #include "deck/deck_parser.hpp"
+#include "deck/spec_choices.hpp"
 #include "model/model.hpp"
 #include "output/hdf5_io.hpp"
 #include "output/results_file_guard.hpp"
@@ -241,6 +242,58 @@ SetupError setUp(const RunOptions& options, bool writes, std::unique_ptr<Model>&
   return {};
 }
 
+// `--cost`: where the time of every process went and what moved between them, one JSON line
+// (scripts/bench_mpi.py reads it). Collective: every process calls it.
+std::string costLine(const Model& model, const SolverStatistics& work, int iterations,
+                     double wallSeconds, ProcessGroup& group) {
+  constexpr int kFields = 7;
+  const AssemblyTimings& timings = model.assemblyTimings();
+  const std::size_t elementSets = model.elementSets().size();
+  double elements = 0, contact = timings.prepare;  // prepare = contact search and projection
+  for (std::size_t c = 0; c < timings.byContribution.size(); ++c) {
+    (c < elementSets ? elements : contact) += timings.byContribution[c].evaluate;
+  }
+  rusage usage{};
+  ::getrusage(RUSAGE_SELF, &usage);
+  const double cpu = static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
+                     1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
+  const LinearSolverStatistics& linear = work.linear;
+  const double mine[kFields] = {
+      cpu,
+      static_cast<double>(usage.ru_maxrss) / 1024.0,
+      elements,
+      contact,
+      linear.analysisSeconds + linear.factorizationSeconds + linear.solveSeconds,
+      linear.matrixBytesSent,
+      linear.solutionBytesReceived};
+  const int processes = group.size();
+  std::vector<double> all(static_cast<std::size_t>(kFields * processes), 0.0);
+  std::copy(mine, mine + kFields, all.begin() + kFields * group.rank());
+  group.sum(all.data(), all.size());
+  auto column = [&](int field) {
+    std::string text = "[";
+    for (int p = 0; p < processes; ++p) {
+      text += fmt::format("{}{:.6g}", p ? ", " : "",
+                          all[static_cast<std::size_t>(kFields * p + field)]);
+    }
+    return text + "]";
+  };
+  auto total = [&](int field) {
+    double sum = 0;
+    for (int p = 0; p < processes; ++p) sum += all[static_cast<std::size_t>(kFields * p + field)];
+    return sum;
+  };
+  const double perIteration = iterations > 0 ? 1.0 / iterations : 0.0;
+  return fmt::format(
+      "cost: {{\"processes\": {}, \"equations\": {}, \"iterations\": {}, \"wall_s\": {:.6g}, "
+      "\"cpu_s\": {}, \"peak_rss_mib\": {}, \"elements_s\": {}, \"contact_s\": {}, "
+      "\"linear_solve_s\": {}, \"bytes_per_iteration\": {{\"force_sums\": {:.6g}, "
+      "\"matrix_entries\": {:.6g}, \"solution\": {:.6g}}}}}\n",
+      processes, model.dofMap().numFree(), iterations, wallSeconds, column(0), column(1), column(2),
+      column(3), column(4), group.bytesMoved() * perIteration, total(5) * perIteration,
+      total(6) * perIteration);
+}
+
 // Options that inspect one process's whole tangent, which no process has under mpirun.
 SetupError refuseSerialOnlyOptions(const RunOptions& options, const ProcessGroup& group) {
   if (group.size() == 1) return {};
@@ -342,7 +395,11 @@ int runCommand(const RunOptions& options) {
                          .string();
     dumps.push_back(dump);
   }
-  LoadStepper stepper(*model, observer, spec.phases, spec.linearSolver, dumps);
+  LinearSolverSpec linearSolver = spec.linearSolver;
+  if (!options.solver.empty()) {
+    linearSolver.method = deck::choiceValue(deck::linearSolverMethods(), options.solver);
+  }
+  LoadStepper stepper(*model, observer, spec.phases, linearSolver, dumps);
   if (!options.checkTangent.empty()) {
     int step = 0, iteration = 0;
     std::sscanf(options.checkTangent.c_str(), "%d:%d", &step, &iteration);  // validated by CLI
@@ -407,6 +464,10 @@ int runCommand(const RunOptions& options) {
   progress.finish();
   const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
   const SolverStatistics work = stepper.statistics();
+  const std::string cost =
+      options.cost ? costLine(*model, work, summary.totalIterations + summary.discardedIterations,
+                              seconds, group)
+                   : std::string();
   if (!writes) return exitCodeOf(summary.outcome);
   writer.close({outcomeName(summary.outcome), summary.stepsConverged, summary.totalIterations,
                 summary.totalCutbacks, seconds, summary.message, observer.linearSolver(),
@@ -425,6 +486,7 @@ int runCommand(const RunOptions& options) {
         summary.stepsConverged, summary.totalIterations, discarded, summary.totalCutbacks, seconds,
         path));
   }
+  if (!cost.empty()) printOut(cost);
   if (group.size() > 1 && !options.quiet) {
     printOut(fmt::format(
         "contact points whose master segment moved to another process: {} (summed over steps)\n",

@@ -10,6 +10,7 @@
 
 #include "app/commands.hpp"
 #include "common/errors.hpp"
+#include "deck/spec_choices.hpp"
 #include "fem/assembler.hpp"
 #include "solver/tangent_dump.hpp"
 #include "solver/tangent_solver.hpp"
@@ -19,12 +20,7 @@ namespace cc::app {
 namespace {
 
 std::optional<LinearSolverSpec::Method> methodNamed(const std::string& name) {
-  using Method = LinearSolverSpec::Method;
-  const std::pair<const char*, Method> names[] = {
-      {"auto", Method::Auto},   {"cholmod", Method::Cholmod},          {"umfpack", Method::Umfpack},
-      {"mumps", Method::Mumps}, {"superlu_dist", Method::SuperluDist}, {"amg", Method::Amg},
-      {"gamg", Method::Gamg}};
-  for (const auto& [spelling, method] : names) {
+  for (const auto& [spelling, method] : deck::linearSolverMethods()) {
     if (name == spelling) return method;
   }
   return std::nullopt;

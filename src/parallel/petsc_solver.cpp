@@ -183,6 +183,8 @@ class PetscSolver final : public LinearSolver {
       check(VecScatterEnd(toAll_, solution_, all_, INSERT_VALUES, SCATTER_FORWARD),
             "VecScatterEnd");
       whole = all_;
+      statistics_.solutionBytesReceived +=
+          static_cast<double>(size_ - (last - first)) * sizeof(PetscScalar);
     }
     Eigen::VectorXd result(equations_);
     const PetscScalar* x = nullptr;
@@ -443,6 +445,9 @@ class PetscSolver final : public LinearSolver {
   // by column; PETSc sends those in rows another process owns at assembly.
   void addShares(const SparseMatrix& matrix) {
     check(MatZeroEntries(matrix_), "MatZeroEntries");
+    const auto [first, last] = ownedRows();
+    // A stashed entry: its value and its row and column (PETSc's stash sends all three).
+    constexpr double kEntryBytes = sizeof(PetscScalar) + 2 * sizeof(PetscInt);
     const double* entries = matrix.valuePtr();
     double diagonalSum = 0;
     std::vector<PetscInt> rows;
@@ -457,6 +462,9 @@ class PetscSolver final : public LinearSolver {
         if (matrix.innerIndexPtr()[k] == j) diagonalSum += std::abs(entries[k]);
       }
       const PetscInt c = row_[j];
+      for (PetscInt r : rows) {
+        if (r < first || r >= last) statistics_.matrixBytesSent += kEntryBytes;
+      }
       if (!rows.empty()) {
         check(MatSetValues(matrix_, static_cast<PetscInt>(rows.size()), rows.data(), 1, &c,
                            column.data(), ADD_VALUES),
@@ -467,7 +475,6 @@ class PetscSolver final : public LinearSolver {
     double total = 0;
     MPI_Allreduce(&diagonalSum, &total, 1, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
     const double scale = equations_ > 0 && total > 0 ? total / equations_ : 1.0;
-    const auto [first, last] = ownedRows();
     for (PetscInt r : identityRows_) {
       if (r >= first && r < last)
         check(MatSetValue(matrix_, r, r, scale, ADD_VALUES), "MatSetValue");

@@ -37,6 +37,9 @@ class ProcessGroup {
   // Ends every process of the run at once with `code`: for a process that cannot go on while
   // the others would wait for it in the next collective operation.
   [[noreturn]] virtual void abort(int code) = 0;
+  // Bytes the group's own operations (sum, agree, ...) moved between processes so far, all
+  // processes together, counting what each message carries (not the transport's overhead).
+  virtual double bytesMoved() const { return 0; }
 };
 
 // Number of processes the launcher (mpirun, srun) started, read from its environment before MPI

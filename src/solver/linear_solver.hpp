@@ -35,6 +35,10 @@ struct LinearSolverStatistics {
   // diverged and were redone with a direct solver (TangentSolver's fallback).
   long krylovIterations = 0;
   int krylovFallbacks = 0;
+  // Several processes: bytes this process sent for matrix entries of rows another process
+  // owns, and received of the solution (the direct solver's own traffic is not counted).
+  double matrixBytesSent = 0;
+  double solutionBytesReceived = 0;
 
   LinearSolverStatistics& operator+=(const LinearSolverStatistics& other);
 };

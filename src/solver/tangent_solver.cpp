@@ -23,6 +23,8 @@ LinearSolverStatistics& LinearSolverStatistics::operator+=(const LinearSolverSta
   largestFactorFlops = std::max(largestFactorFlops, other.largestFactorFlops);
   krylovIterations += other.krylovIterations;
   krylovFallbacks += other.krylovFallbacks;
+  matrixBytesSent += other.matrixBytesSent;
+  solutionBytesReceived += other.solutionBytesReceived;
   return *this;
 }
 
