@@ -39,8 +39,9 @@ int positiveFromEnvironment(const char* name) {
 }  // namespace
 
 int launchedProcesses() {
-  // Open MPI's mpirun, MPICH/Hydra and PMI-based launchers (srun --mpi=pmi2) respectively.
-  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_SIZE"}) {
+  // Open MPI's mpirun, MPICH/Hydra or PMI-2 launchers, and Slurm's srun (which starts the
+  // tasks of a job step itself; a serial run inside a batch script has no step task count).
+  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "SLURM_STEP_NUM_TASKS"}) {
     if (const int size = positiveFromEnvironment(name)) return size;
   }
   return 1;

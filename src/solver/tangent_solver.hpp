@@ -4,7 +4,9 @@
 // tangents go to UMFPACK. `solver=auto` uses the direct pair below kIterativeBreakEven free
 // equations and GMRES + GAMG (PETSc) above it. An iterative solve that stalls or
 // diverges is redone with the direct pair for that iteration, and the note says so. Each
-// backend repeats its symbolic analysis only when SystemMatrices::patternVersion changes.
+// backend repeats its symbolic analysis only when SystemMatrices::patternVersion changes. On
+// several processes (SystemLayout::nodeOwner given) every system goes to PETSc: MUMPS where the
+// serial direct pair would be used, and for the fallback of a failed Krylov solve.
 #pragma once
 
 #include <Eigen/Core>
