@@ -338,6 +338,11 @@ class PetscSolver final : public LinearSolver {
       }
       check(MatAssemblyBegin(matrix_, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
       check(MatAssemblyEnd(matrix_, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+      // addShares() works from the shares and row_ alone: the replicated CSR (16 bytes per
+      // nonzero of the whole matrix on every process) is not kept.
+      for (auto* unused : {&rowStart_, &columns_, &position_})
+        std::vector<PetscInt>().swap(*unused);
+      std::vector<PetscScalar>().swap(values_);
     }
     check(MatCreateVecs(matrix_, &solution_, &rhs_), "MatCreateVecs");
     if (distributed_)
