@@ -285,11 +285,13 @@ std::string costLine(const Model& model, const SolverStatistics& work, int itera
   };
   const double perIteration = iterations > 0 ? 1.0 / iterations : 0.0;
   return fmt::format(
-      "cost: {{\"processes\": {}, \"equations\": {}, \"iterations\": {}, \"wall_s\": {:.6g}, "
+      "cost: {{\"processes\": {}, \"equations\": {}, \"elements\": {}, \"assemblies\": {}, "
+      "\"iterations\": {}, \"wall_s\": {:.6g}, "
       "\"cpu_s\": {}, \"peak_rss_mib\": {}, \"elements_s\": {}, \"contact_s\": {}, "
       "\"linear_solve_s\": {}, \"bytes_per_iteration\": {{\"force_sums\": {:.6g}, "
       "\"matrix_entries\": {:.6g}, \"solution\": {:.6g}}}}}\n",
-      processes, model.dofMap().numFree(), iterations, wallSeconds, column(0), column(1), column(2),
+      processes, model.dofMap().numFree(), model.elementCount(), timings.assemblies, iterations,
+      wallSeconds, column(0), column(1), column(2),
       column(3), column(4), group.bytesMoved() * perIteration, total(5) * perIteration,
       total(6) * perIteration);
 }
