@@ -175,7 +175,7 @@ bool Assembler::Impl::patternStale(const SystemMatrices& tangent) const {
 }
 
 void Assembler::Impl::rebuildPattern(SystemMatrices& tangent, AssemblyTimings& timings) {
-  const NodeGraph graph = buildNodeGraph(contributions, dofs.numNodes());
+  const NodeGraph graph = buildNodeGraph(contributions, dofs.numNodes(), filter);
   SparseMatrix free, coupling;
   buildSparsityPattern(dofs, graph, free, coupling);
   ++timings.patternBuilds;
@@ -271,6 +271,10 @@ void Assembler::Impl::evaluateContribution(std::size_t index, const AssemblyStat
   if (first.error) std::rethrow_exception(first.error);
   throw StepFailure(first.kind, contribution.name() + " item " + std::to_string(first.item) + ": " +
                                     first.detail);
+}
+
+std::uint64_t newPatternVersion() {
+  return nextPatternVersion++;
 }
 
 Assembler::Assembler(const DofMap& dofs, std::vector<Contribution*> contributions)

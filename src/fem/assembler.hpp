@@ -17,6 +17,10 @@
 
 namespace cc {
 
+// A pattern version no assembler has handed out (a process whose own pattern did not change
+// while another's did takes one, so that all of them analyze again together).
+std::uint64_t newPatternVersion();
+
 struct SystemMatrices {
   SparseMatrix free;                 // K_ff: numFree x numFree (full storage, both triangles)
   SparseMatrix coupling;             // K_fp: numFree x numPrescribed
@@ -44,15 +48,6 @@ struct AssemblyTimings {
   // benchmark can tell element from contact cost).
   std::vector<ContributionTimings> byContribution;
 };
-
-// What this process does with an item in a run on several processes (the model decides; a
-// serial run has no filter and assembles every item).
-enum class ItemRole {
-  Assemble,      // evaluate and add into the force vector and tangent
-  EvaluateOnly,  // evaluate for its history only (another process adds it)
-  Skip,          // another process owns it
-};
-using ItemFilter = std::function<ItemRole(std::size_t contribution, std::size_t item)>;
 
 class Assembler {
  public:

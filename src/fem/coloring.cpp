@@ -21,11 +21,13 @@ void checkNode(const Contribution& contribution, std::size_t item, int node, int
 
 }  // namespace
 
-NodeIncidence nodeIncidence(const Contribution& contribution, int numNodes) {
+NodeIncidence nodeIncidence(const Contribution& contribution, int numNodes,
+                            const std::function<bool(std::size_t item)>& keep) {
   NodeIncidence incidence;
   incidence.offsets.assign(static_cast<std::size_t>(numNodes) + 1, 0);
   const std::size_t numItems = contribution.itemCount();
   for (std::size_t item = 0; item < numItems; ++item) {
+    if (keep && !keep(item)) continue;
     for (int node : contribution.itemNodes(item)) {
       checkNode(contribution, item, node, numNodes);
       ++incidence.offsets[static_cast<std::size_t>(node) + 1];
@@ -37,6 +39,7 @@ NodeIncidence nodeIncidence(const Contribution& contribution, int numNodes) {
   incidence.items.resize(incidence.offsets.back());
   std::vector<std::size_t> fill(incidence.offsets.begin(), incidence.offsets.end() - 1);
   for (std::size_t item = 0; item < numItems; ++item) {
+    if (keep && !keep(item)) continue;
     for (int node : contribution.itemNodes(item)) incidence.items[fill[node]++] = item;
   }
   return incidence;

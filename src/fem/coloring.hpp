@@ -24,6 +24,8 @@ struct NodeIncidence {
   std::vector<std::size_t> offsets;
   std::vector<std::size_t> items;
 };
-NodeIncidence nodeIncidence(const Contribution& contribution, int numNodes);
+// `keep` (optional) selects the items taken into account.
+NodeIncidence nodeIncidence(const Contribution& contribution, int numNodes,
+                            const std::function<bool(std::size_t item)>& keep = {});
 
 }  // namespace cc

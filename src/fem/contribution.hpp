@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <string>
 
@@ -28,6 +29,16 @@ struct LocalStatus {
   static LocalStatus success() { return {}; }
   static LocalStatus failure(FailureKind k, std::string d) { return {false, k, std::move(d)}; }
 };
+
+// What this process does with an item in a run on several processes (the model decides; a
+// serial run has no filter and assembles every item). The sparsity pattern of a process holds
+// only the entries of the items it assembles.
+enum class ItemRole {
+  Assemble,      // evaluate and add into the force vector and tangent
+  EvaluateOnly,  // evaluate for its history only (another process adds it)
+  Skip,          // another process owns it
+};
+using ItemFilter = std::function<ItemRole(std::size_t contribution, std::size_t item)>;
 
 class Contribution {
  public:

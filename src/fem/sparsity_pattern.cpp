@@ -10,11 +10,15 @@
 
 namespace cc {
 
-NodeGraph buildNodeGraph(std::span<Contribution* const> contributions, int numNodes) {
+NodeGraph buildNodeGraph(std::span<Contribution* const> contributions, int numNodes,
+                         const ItemFilter& filter) {
   std::vector<NodeIncidence> incidences;
   incidences.reserve(contributions.size());
-  for (const Contribution* contribution : contributions) {
-    incidences.push_back(nodeIncidence(*contribution, numNodes));
+  for (std::size_t c = 0; c < contributions.size(); ++c) {
+    std::function<bool(std::size_t)> assembled;
+    if (filter)
+      assembled = [&filter, c](std::size_t item) { return filter(c, item) == ItemRole::Assemble; };
+    incidences.push_back(nodeIncidence(*contributions[c], numNodes, assembled));
   }
   NodeGraph graph;
   graph.offsets.assign(static_cast<std::size_t>(numNodes) + 1, 0);

@@ -18,7 +18,10 @@ struct NodeGraph {
   std::vector<int> neighbours;
 };
 
-NodeGraph buildNodeGraph(std::span<Contribution* const> contributions, int numNodes);
+// With a filter, only the items this process assembles (ItemRole::Assemble) count; every node
+// keeps itself as neighbour (the diagonal blocks).
+NodeGraph buildNodeGraph(std::span<Contribution* const> contributions, int numNodes,
+                         const ItemFilter& filter = {});
 
 // Resizes `free` and `coupling` to the pattern of `graph` with zero values. Because equations
 // are numbered node by node, visiting neighbours in ascending order yields sorted row indices.

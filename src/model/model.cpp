@@ -43,6 +43,15 @@ void Model::assemble(const AssemblyState& state, Eigen::VectorXd& internalForce,
   const auto [code, text] = group_->agree(failure, message);
   if (code != 0) throw StepFailure(static_cast<FailureKind>(code - 1), text);
   group_->sum(internalForce.data(), static_cast<std::size_t>(internalForce.size()));
+  if (tangent) {
+    // Each process's pattern holds only its own items: when any of them changed, all take a
+    // new version, so that the distributed matrix is rebuilt by all of them together.
+    const bool changed = tangent->patternVersion != sharedPatternVersion_;
+    if (group_->maximum(changed ? 1 : 0) != 0 && !changed) {
+      tangent->patternVersion = newPatternVersion();
+    }
+    sharedPatternVersion_ = tangent->patternVersion;
+  }
 }
 
 void Model::sumOverProcesses(Eigen::VectorXd& values) {

@@ -113,6 +113,7 @@ class Model : public NonlinearProblem {
   std::vector<std::vector<char>> ownsElement_;
   std::vector<std::vector<int>> masterOwner_;  // per pair and point at the last commit, -1 none
   long masterOwnerChanges_ = 0;
+  std::uint64_t sharedPatternVersion_ = 0;  // the pattern version all processes analyzed last
 };
 
 // Loads the mesh and builds the model. Throws InputError naming the deck line of whatever does

@@ -94,8 +94,13 @@ class PetscSolver final : public LinearSolver {
     }
     const auto start = std::chrono::steady_clock::now();
     destroy();
-    buildStructure(matrix);
-    createMatrix();
+    if (layout_.nodeOwner.empty()) {
+      buildStructure(matrix);
+      createMatrix();
+    } else {
+      createDistributedMatrix(matrix);
+    }
+    createVectors();
     createSolver();
     ++statistics_.analyses;
     statistics_.analysisSeconds += secondsSince(start);
@@ -327,23 +332,9 @@ class PetscSolver final : public LinearSolver {
         MatXAIJSetPreallocation(matrix_, 1, diagonal.data(), offDiagonal.data(), nullptr, nullptr),
         "MatXAIJSetPreallocation");
     check(MatSetOption(matrix_, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE), "MatSetOption");
-    if (distributed_) {
-      // The whole pattern, once: a share adds only its nonzero entries, and the first final
-      // assembly would drop every preallocated entry not set by then.
-      for (PetscInt r = first; r < last; ++r) {
-        const PetscInt count = rowStart_[r + 1] - rowStart_[r];
-        check(MatSetValues(matrix_, 1, &r, count, columns_.data() + rowStart_[r],
-                           values_.data() + rowStart_[r], INSERT_VALUES),
-              "MatSetValues");
-      }
-      check(MatAssemblyBegin(matrix_, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
-      check(MatAssemblyEnd(matrix_, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
-      // addShares() works from the shares and row_ alone: the replicated CSR (16 bytes per
-      // nonzero of the whole matrix on every process) is not kept.
-      for (auto* unused : {&rowStart_, &columns_, &position_})
-        std::vector<PetscInt>().swap(*unused);
-      std::vector<PetscScalar>().swap(values_);
-    }
+  }
+
+  void createVectors() {
     check(MatCreateVecs(matrix_, &solution_, &rhs_), "MatCreateVecs");
     if (distributed_)
       check(VecScatterCreateToAll(solution_, &toAll_, &all_), "VecScatterCreateToAll");
@@ -351,6 +342,60 @@ class PetscSolver final : public LinearSolver {
       check(VecDuplicate(solution_, &coordinates_), "VecDuplicate");
       check(VecSetBlockSize(coordinates_, 3), "VecSetBlockSize");
     }
+  }
+
+  // Several processes: each passes the pattern of its own items only; PETSc's preallocator
+  // sums the structure of all shares (entries of rows another process owns travel to it) and
+  // gives the distributed matrix exactly that structure, filled with zeros.
+  void createDistributedMatrix(const SparseMatrix& matrix) {
+    equations_ = matrix.rows();
+    nonZeros_ = matrix.nonZeros();
+    embedded_ = iterative() && static_cast<Eigen::Index>(layout_.freeDofs.size()) == equations_ &&
+                layout_.coordinates.cols() > 0;
+    size_ = embedded_ ? static_cast<PetscInt>(3 * layout_.coordinates.cols())
+                      : static_cast<PetscInt>(equations_);
+    row_.resize(static_cast<std::size_t>(equations_));
+    numberRows(embedded_);
+    const auto [first, last] = ownedRows();
+    identityRows_.clear();
+    if (embedded_) {
+      std::vector<char> isFree(static_cast<std::size_t>(size_), 0);
+      for (PetscInt r : row_) isFree[static_cast<std::size_t>(r)] = 1;
+      for (PetscInt r = first; r < last; ++r) {
+        if (!isFree[static_cast<std::size_t>(r)]) identityRows_.push_back(r);
+      }
+    }
+    const PetscInt local = last - first;
+    Mat structure = nullptr;
+    check(MatCreate(PETSC_COMM_WORLD, &structure), "MatCreate");
+    check(MatSetType(structure, MATPREALLOCATOR), "MatSetType");
+    check(MatSetSizes(structure, local, local, size_, size_), "MatSetSizes");
+    if (embedded_) check(MatSetBlockSize(structure, 3), "MatSetBlockSize");
+    check(MatSetUp(structure), "MatSetUp");
+    std::vector<PetscInt> rows;
+    std::vector<PetscScalar> zeros;
+    for (Eigen::Index j = 0; j < equations_; ++j) {
+      rows.clear();
+      for (int k = matrix.outerIndexPtr()[j]; k < matrix.outerIndexPtr()[j + 1]; ++k) {
+        rows.push_back(row_[matrix.innerIndexPtr()[k]]);
+      }
+      zeros.assign(rows.size(), 0.0);
+      const PetscInt c = row_[j];
+      check(MatSetValues(structure, static_cast<PetscInt>(rows.size()), rows.data(), 1, &c,
+                         zeros.data(), INSERT_VALUES),
+            "MatSetValues");
+    }
+    for (PetscInt r : identityRows_)
+      check(MatSetValue(structure, r, r, 0.0, INSERT_VALUES), "MatSetValue");
+    check(MatAssemblyBegin(structure, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
+    check(MatAssemblyEnd(structure, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+    check(MatCreate(PETSC_COMM_WORLD, &matrix_), "MatCreate");
+    check(MatSetSizes(matrix_, local, local, size_, size_), "MatSetSizes");
+    check(MatSetType(matrix_, MATAIJ), "MatSetType");
+    if (embedded_) check(MatSetBlockSize(matrix_, 3), "MatSetBlockSize");
+    check(MatPreallocatorPreallocate(structure, PETSC_TRUE, matrix_), "MatPreallocatorPreallocate");
+    check(MatDestroy(&structure), "MatDestroy");
+    check(MatSetOption(matrix_, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE), "MatSetOption");
   }
 
   void createSolver() {
