@@ -101,6 +101,51 @@ NodeMatrix<double> MasterSurface::segmentNodes(int segment,
   return nodes;
 }
 
+void MasterSurface::updateNormals(const Eigen::Matrix3Xd& coordinates) {
+  nodalNormals_.setZero(3, coordinates.cols());
+  for (int s = 0; s < segmentCount(); ++s) {
+    for (int k = 0; k < 4; ++k) {
+      const Eigen::Vector3d corner = coordinates.col(segments_(s, k));
+      const Eigen::Vector3d next = coordinates.col(segments_(s, (k + 1) % 4)) - corner;
+      const Eigen::Vector3d previous = coordinates.col(segments_(s, (k + 3) % 4)) - corner;
+      const Eigen::Vector3d cross = next.cross(previous);  // along rho_1 x rho_2 at the corner
+      const double angle = std::atan2(cross.norm(), next.dot(previous));
+      if (cross.norm() > 0) nodalNormals_.col(segments_(s, k)) += angle * cross.normalized();
+    }
+  }
+  for (Eigen::Index n = 0; n < nodalNormals_.cols(); ++n) {
+    const double length = nodalNormals_.col(n).norm();
+    if (length > 0) nodalNormals_.col(n) /= length;
+  }
+}
+
+NodalNormals MasterSurface::segmentNormals(int segment) const {
+  NodalNormals normals;
+  for (int k = 0; k < 4; ++k) normals[k] = nodalNormals_.col(segments_(segment, k));
+  return normals;
+}
+
+ProjectionResult MasterSurface::projectOn(int segment, const Eigen::Vector3d& point,
+                                          const Eigen::Vector2d& guess,
+                                          const Eigen::Matrix3Xd& coordinates) const {
+  if (!smooth_)
+    return closestPointProjection(type_, segmentNodes(segment, coordinates), point, guess);
+  const NodalNormals normals = segmentNormals(segment);
+  return closestPointProjection(type_, segmentNodes(segment, coordinates), point, guess, {},
+                                &normals);
+}
+
+double MasterSurface::distanceTo(int segment, const Eigen::Vector2d& xi,
+                                 const Eigen::Vector3d& point,
+                                 const Eigen::Matrix3Xd& coordinates) const {
+  const NodalNormals normals = smooth_ ? segmentNormals(segment) : NodalNormals{};
+  Eigen::Vector3d rho;
+  std::array<Eigen::Vector3d, 2> tangents;
+  interpolateSegment(type_, segmentNodes(segment, coordinates), smooth_ ? &normals : nullptr, xi[0],
+                     xi[1], rho, tangents, nullptr);
+  return (point - rho).norm();
+}
+
 MasterSurface::CellKey MasterSurface::cellKey(const Eigen::Vector3i& cell) const {
   constexpr long long kOffset = 1 << 20;
   constexpr int kBits = 21;
@@ -145,17 +190,13 @@ SegmentProjection MasterSurface::walk(int start, const Eigen::Vector2d& guess,
   std::vector<int> visited;
   std::vector<Eigen::Vector2d> visitedXi;
   auto projectionOn = [&](int segment, const Eigen::Vector2d& xi) -> SegmentProjection {
-    const shape::SurfaceShape<double> shape = shape::surfaceShape(type_, xi[0], xi[1]);
-    Eigen::Vector3d rho = Eigen::Vector3d::Zero();
-    for (int k = 0; k < shape.count; ++k) rho += shape.value[k] * coordinates.col(node(segment, k));
-    return {segment, xi, (point - rho).norm()};
+    return {segment, xi, distanceTo(segment, xi, point, coordinates)};
   };
   int segment = start;
   Eigen::Vector2d initial = guess;
   for (int hop = 0; hop < kMaxWalkHops && segment >= 0; ++hop) {
     visited.push_back(segment);
-    const ProjectionResult p =
-        closestPointProjection(type_, segmentNodes(segment, coordinates), point, initial);
+    const ProjectionResult p = projectOn(segment, point, initial, coordinates);
     if (!p.converged) {
       SegmentProjection notFound;
       notFound.projectionBrokeDown = p.brokeDown;
@@ -203,13 +244,9 @@ SegmentProjection MasterSurface::search(const Eigen::Vector3d& point,
   const auto cell = cells_.find(cellKey(cellOf(point)));
   if (cell == cells_.end()) return best;
   for (int segment : cell->second) {
-    const ProjectionResult p = closestPointProjection(type_, segmentNodes(segment, coordinates),
-                                                      point, Eigen::Vector2d::Zero());
+    const ProjectionResult p = projectOn(segment, point, Eigen::Vector2d::Zero(), coordinates);
     if (!p.converged) continue;
-    const shape::SurfaceShape<double> shape = shape::surfaceShape(type_, p.xi[0], p.xi[1]);
-    Eigen::Vector3d rho = Eigen::Vector3d::Zero();
-    for (int k = 0; k < shape.count; ++k) rho += shape.value[k] * coordinates.col(node(segment, k));
-    const SegmentProjection candidate{segment, p.xi, (point - rho).norm()};
+    const SegmentProjection candidate{segment, p.xi, distanceTo(segment, p.xi, point, coordinates)};
     SegmentProjection& slot = accepts(segment, p.xi, kInsideTolerance) ? best : nearestOutside;
     if (!slot.found() || candidate.distance < slot.distance) slot = candidate;
   }
