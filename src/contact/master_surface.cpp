@@ -37,6 +37,10 @@ constexpr double kStayOnSegmentTolerance = 1e-6;
 // half segment as beyond a free edge, keeps the extrapolation short.
 constexpr double kRidgeTolerance = kFreeEdgeTolerance;
 
+// Smoothed master: a projection is refined on the Nagata patch only if the faceted one lies
+// within this distance of the segment in parameter space (see projectOn).
+constexpr double kSmoothRefineReach = 0.5;
+
 // Corners of edge e in the Quad4/Quad9 numbering: (0,1), (1,2), (2,3), (3,0).
 std::pair<int, int> edgeCorners(int edge) {
   return {edge, (edge + 1) % 4};
@@ -117,22 +121,40 @@ void MasterSurface::updateNormals(const Eigen::Matrix3Xd& coordinates) {
     const double length = nodalNormals_.col(n).norm();
     if (length > 0) nodalNormals_.col(n) /= length;
   }
+  // Per edge, from the same configuration: shared edges get the same scale from both sides.
+  tangentialScales_.resize(segmentCount());
+  for (int s = 0; s < segmentCount(); ++s) {
+    for (int e = 0; e < 4; ++e) {
+      const int i = segments_(s, nagataEdgeStart(e)), j = segments_(s, nagataEdgeEnd(e));
+      tangentialScales_[s][e] = nagataTangentialScale(nodalNormals_.col(i), nodalNormals_.col(j),
+                                                      coordinates.col(j) - coordinates.col(i));
+    }
+  }
 }
 
 NodalNormals MasterSurface::segmentNormals(int segment) const {
   NodalNormals normals;
   for (int k = 0; k < 4; ++k) normals[k] = nodalNormals_.col(segments_(segment, k));
+  normals.tangentialScale = tangentialScales_[segment];
   return normals;
 }
 
 ProjectionResult MasterSurface::projectOn(int segment, const Eigen::Vector3d& point,
                                           const Eigen::Vector2d& guess,
                                           const Eigen::Matrix3Xd& coordinates) const {
-  if (!smooth_)
-    return closestPointProjection(type_, segmentNodes(segment, coordinates), point, guess);
+  const NodeMatrix<double> nodes = segmentNodes(segment, coordinates);
+  const ProjectionResult faceted = closestPointProjection(type_, nodes, point, guess);
+  // Smoothed: refine on the Nagata patch only near the segment. The patch is a cubic in xi
+  // whose extrapolation far beyond the segment curls back, and a point far away (a segment
+  // of the search grid's cell) found spurious stationary points of the distance there
+  // (slave points "projected" onto a segment 3 units away, at a gap of -3.8). The faceted
+  // projection decides whether the point is near the segment; the patch differs from it by
+  // O(h^2) curvature, far less than kSmoothRefineReach.
+  if (!smooth_ || !faceted.converged || largestExcess(faceted.xi) > kSmoothRefineReach) {
+    return faceted;
+  }
   const NodalNormals normals = segmentNormals(segment);
-  return closestPointProjection(type_, segmentNodes(segment, coordinates), point, guess, {},
-                                &normals);
+  return closestPointProjection(type_, nodes, point, faceted.xi, {}, &normals);
 }
 
 double MasterSurface::distanceTo(int segment, const Eigen::Vector2d& xi,

@@ -81,7 +81,8 @@ class MasterSurface {
 
   shape::SurfaceType type_ = shape::SurfaceType::Quad4;
   bool smooth_ = false;
-  Eigen::Matrix3Xd nodalNormals_;  // per mesh node (zero off the surface)
+  Eigen::Matrix3Xd nodalNormals_;                        // per mesh node (zero off the surface)
+  std::vector<std::array<double, 4>> tangentialScales_;  // per segment edge (nagata.hpp)
   Connectivity segments_;
   std::vector<std::array<int, 4>> neighbours_;
   double typicalSize_ = 1;

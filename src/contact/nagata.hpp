@@ -22,10 +22,6 @@
 
 namespace cc::contact {
 
-// Nodal normals of a Quad4 master segment, in its node order (unit vectors, outward on the
-// master, i.e. pointing to the slave side).
-using NodalNormals = std::array<Eigen::Vector3d, 4>;
-
 // Corners of edge e (0: xi2 = -1, 1: xi1 = +1, 2: xi2 = +1, 3: xi1 = -1), from i to j.
 constexpr int nagataEdgeStart(int e) {
   return e;
@@ -40,14 +36,49 @@ constexpr int nagataEdgeEnd(int e) {
 // curve's end tangents d -+ c orthogonal to the normals). Parallel normals (dc -> 0): a straight
 // edge, c = 0 (Nagata's rule; the second term would divide the chord's normal component by
 // zero, a step between parallel normals that no smooth surface has).
-inline Eigen::Matrix3d nagataEdgeMatrix(const Eigen::Vector3d& n0, const Eigen::Vector3d& n1) {
+// `tangentialScale` (<= 1) scales the second term, see nagataTangentialScale.
+inline Eigen::Matrix3d nagataEdgeMatrix(const Eigen::Vector3d& n0, const Eigen::Vector3d& n1,
+                                        double tangentialScale = 1) {
   constexpr double kParallel = 1e-14;
   const Eigen::Vector3d v = 0.5 * (n0 + n1);
   const Eigen::Vector3d dv = 0.5 * (n0 - n1);
   const double dc = n0.dot(dv);
   if (dc < kParallel) return Eigen::Matrix3d::Zero();
-  return v * dv.transpose() / (1 - dc) + dv * v.transpose() / dc;
+  return v * dv.transpose() / (1 - dc) + tangentialScale * dv * v.transpose() / dc;
 }
+
+// The second term of c has the length |d . v| / |dv| (dc = |dv|^2), i.e. |d| times the edge's
+// asymmetry |d . v| / (|d| |dv|): zero on a circular arc, small where the nodal normals are
+// accurate, but of order one where one of them is not (at a free edge of the master, whose
+// boundary nodes see the adjacent segments on one side only). Then c ~ d, an end tangent d -+ c
+// vanishes and the patch folds (on the meshed trough of smooth_master.md a fold turned the
+// normal over: gaps of -0.1 and a singular tangent). The scale caps the term at
+// kMaxAsymmetry |d|, which leaves Nagata's interpolation untouched wherever the normals are
+// consistent with the chord. It is computed with the normals (from the configuration at the
+// step's start) and held fixed over the step like them, so c stays linear in the nodes.
+inline double nagataTangentialScale(const Eigen::Vector3d& n0, const Eigen::Vector3d& n1,
+                                    const Eigen::Vector3d& chord) {
+  constexpr double kMaxAsymmetry = 0.25;
+  const double dvLength = 0.5 * (n0 - n1).norm();
+  const double tangential = std::abs(chord.dot(0.5 * (n0 + n1)));
+  if (tangential <= kMaxAsymmetry * chord.norm() * dvLength) return 1;
+  return kMaxAsymmetry * chord.norm() * dvLength / tangential;
+}
+
+// Nodal normals of a Quad4 master segment, in its node order (unit vectors, outward on the
+// master, i.e. pointing to the slave side), and the tangential scale of each edge.
+struct NodalNormals {
+  std::array<Eigen::Vector3d, 4> normal;
+  std::array<double, 4> tangentialScale{1, 1, 1, 1};
+  Eigen::Vector3d& operator[](int k) { return normal[k]; }
+  const Eigen::Vector3d& operator[](int k) const { return normal[k]; }
+  auto begin() { return normal.begin(); }
+  auto end() { return normal.end(); }
+  Eigen::Matrix3d edgeMatrix(int e) const {
+    return nagataEdgeMatrix(normal[nagataEdgeStart(e)], normal[nagataEdgeEnd(e)],
+                            tangentialScale[e]);
+  }
+};
 
 // f_e and its first and second parametric derivatives at xi (second: 11, 12, 22).
 template <class Scalar>
@@ -96,8 +127,7 @@ std::array<Eigen::Matrix<Scalar, 3, 1>, 4> nagataCorrections(
   for (int e = 0; e < 4; ++e) {
     const int i = nagataEdgeStart(e), j = nagataEdgeEnd(e);
     const Eigen::Matrix<Scalar, 3, 1> chord = nodes.col(j) - nodes.col(i);
-    const Eigen::Matrix3d C = nagataEdgeMatrix(normals[i], normals[j]);
-    c[e] = transposeTimes<Scalar>(C.transpose(), chord);
+    c[e] = transposeTimes<Scalar>(normals.edgeMatrix(e).transpose(), chord);
   }
   return c;
 }
@@ -133,8 +163,7 @@ Eigen::Matrix<Scalar, 3, 1> nagataShapeTranspose(int k, const Scalar& shapeValue
   for (int e = 0; e < 4; ++e) {
     const int i = nagataEdgeStart(e), j = nagataEdgeEnd(e);
     if (k != i && k != j) continue;
-    const Eigen::Matrix<Scalar, 3, 1> Ctu =
-        transposeTimes(nagataEdgeMatrix(normals[i], normals[j]), u);
+    const Eigen::Matrix<Scalar, 3, 1> Ctu = transposeTimes(normals.edgeMatrix(e), u);
     v += (k == i ? 1.0 : -1.0) * weights[e] * Ctu;
   }
   return v;

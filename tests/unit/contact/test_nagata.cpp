@@ -203,8 +203,9 @@ TEST(NagataPatch, DerivativesMatchFiniteDifferences) {
   p.nodes << -1.1, 0.9, 1.2, -0.8,  //
       -0.9, -1.1, 1.0, 0.8,         //
       0.05, -0.1, 0.12, -0.04;
-  p.normals = {Vector3d(0.1, 0.2, 1).normalized(), Vector3d(-0.2, 0.1, 1).normalized(),
-               Vector3d(-0.1, -0.3, 1).normalized(), Vector3d(0.25, -0.1, 1).normalized()};
+  p.normals.normal = {Vector3d(0.1, 0.2, 1).normalized(), Vector3d(-0.2, 0.1, 1).normalized(),
+                      Vector3d(-0.1, -0.3, 1).normalized(), Vector3d(0.25, -0.1, 1).normalized()};
+  p.normals.tangentialScale = {1.0, 0.7, 1.0, 0.4};  // and the limiter's scales
   const Vector2d xi(0.23, -0.61);
   const double h = 1e-5;
   auto rhoAt = [&](const Vector2d& x) {
@@ -243,6 +244,23 @@ TEST(NagataPatch, EdgeCurveIsTangentToBothNormals) {
   EXPECT_LT(std::abs(n0.dot(d - c)), 1e-15);
   EXPECT_LT(std::abs(n1.dot(d + c)), 1e-15);
   EXPECT_EQ(nagataEdgeMatrix(n0, n0), Eigen::Matrix3d::Zero());
+}
+
+// A free-edge node whose normal is that of its one adjacent segment, exactly orthogonal to the
+// chord, and the other end's normal tilted by theta: the unlimited coefficient has c ~ -d (the end
+// tangent d + c of length O(theta)), the limited one keeps |c| <= 0.25 |d| + O(theta) |d|.
+TEST(NagataPatch, TangentialScaleKeepsOneSidedEdgeFromFolding) {
+  const double theta = 0.025;
+  const Vector3d d(0.5, 0, 0);
+  const Vector3d n0 = Vector3d::UnitZ();
+  const Vector3d n1(-std::sin(theta), 0, std::cos(theta));
+  const Vector3d unlimited = nagataEdgeMatrix(n0, n1) * d;
+  EXPECT_LT(std::min((d - unlimited).norm(), (d + unlimited).norm()), 2 * theta * d.norm());
+  const double scale = nagataTangentialScale(n0, n1, d);
+  EXPECT_NEAR(scale, 0.25, 0.01);  // asymmetry cos(theta/2) ~ 1 against the cap 1/4
+  const Vector3d limited = nagataEdgeMatrix(n0, n1, scale) * d;
+  EXPECT_LT(limited.norm(), 0.25 * d.norm() + theta * d.norm());
+  EXPECT_GT(std::min((d - limited).norm(), (d + limited).norm()), 0.7 * d.norm());
 }
 
 // The projection onto a smoothed segment lands on the patch (orthogonality of r - rho to the
