@@ -180,11 +180,11 @@ void handleContact(const ParsedLine& line, DeckState& state) {
   }
   contact.integrationPoints = line.integer("points");
   setTangentParts(line, context, contact);
-  contact.masterSurface = choiceValue(masterSurfaces(), line.text("master_surface"));
-  if (contact.kind == ContactSpec::Kind::SegmentToAnalytical && line.given("master_surface") &&
+  contact.masterSurface = choiceValue(masterSurfaces(), line.text("surface"));
+  if (contact.kind == ContactSpec::Kind::SegmentToAnalytical && line.given("surface") &&
       contact.masterSurface == ContactSpec::MasterSurface::Smooth) {
-    fail(line.value("master_surface").where,
-         "master_surface=smooth applies to sts and nts pairs only (stas integrates on the "
+    fail(line.value("surface").where,
+         "surface=smooth applies to sts and nts pairs only (stas integrates on the "
          "master's own segments)");
   }
   contact.where = line.where();

@@ -246,7 +246,7 @@ std::unique_ptr<contact::ContactPair> makePair(const ContactSpec& spec, const Pr
                                                      surfaceMotion(*rigid));
   }
   if (config.smoothMaster && master.type != CellType::Quad4) {
-    throw InputError(spec.where, fmt::format("contact '{}': master_surface=smooth needs a Quad4 "
+    throw InputError(spec.where, fmt::format("contact '{}': surface=smooth needs a Quad4 "
                                              "master surface (Nagata patches over its corners)",
                                              spec.name));
   }
