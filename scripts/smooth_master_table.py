@@ -17,6 +17,12 @@ the reactions CSVs (STEM_reactions.csv) in DIR and prints, per meshed run agains
       the shell's own discretization (its contact line crossing its element edges, steps
       17-25) shows in every run alike and mostly cancels in the difference;
   mesh convergence: the force difference (as above) to the finest smooth run;
+  Coulomb check (an independent reference): in gross sliding the contact force on the shell
+      must be mu N along minus the slip velocity. With n the trough's normal at the foot point
+      of the prescribed motion (the contact line, eq. (127) with the exact 0.99-offset of
+      model.inc) and the slip the tangential part of the edges' prescribed displacement in the
+      step, the largest over steps 5-36 of | |F_t| / (mu N) - 1 | and of the angle between
+      -F_t and the slip;
   ratio: the faceted run's oscillation over the smooth run's;
   iterations: Newton iterations per step in the spiral, and the analytic run's.
 """
@@ -87,6 +93,37 @@ def oscillation(t, f, reference):
     return worst
 
 
+MU, C = 0.3, 0.05
+
+
+def driven_position(t):
+    """Prescribed position (offset from the start) of the driven edges and the foot point a."""
+    s = 0.01 * max(t - 1, 0)
+    q = math.sqrt(1 + 4 * C * C * s * s)
+    return [s * (1 - 2 * C * 0.99 / q), 0.02 * max(t - 1, 0),
+            -0.01 * min(t, 1) + C * s * s + 0.99 / q - 0.99], s
+
+
+def coulomb(t, f):
+    """Largest deviation from Coulomb's law in gross sliding: (|F_t|/(mu N) - 1, angle deg)."""
+    worst_ratio, worst_angle = 0.0, 0.0
+    for k in range(GROSS_SLIDING[0] - 1, GROSS_SLIDING[1]):
+        x1, a = driven_position(t[k])
+        x0, _ = driven_position(t[k - 1])
+        n = [-2 * C * a, 0.0, 1.0]
+        n = [x / norm(n) for x in n]
+        contact = [-x for x in f[k]]  # the force of the trough on the shell
+        normal = sum(c * m for c, m in zip(contact, n))
+        ft = [c - normal * m for c, m in zip(contact, n)]
+        v = [b - a0 for b, a0 in zip(x1, x0)]
+        vn = sum(c * m for c, m in zip(v, n))
+        vt = [c - vn * m for c, m in zip(v, n)]
+        cosine = -sum(p * q for p, q in zip(ft, vt)) / (norm(ft) * norm(vt))
+        worst_ratio = max(worst_ratio, abs(norm(ft) / (MU * normal) - 1))
+        worst_angle = max(worst_angle, math.degrees(math.acos(min(1.0, cosine))))
+    return worst_ratio, worst_angle
+
+
 def norm(v):
     return math.sqrt(sum(x * x for x in v))
 
@@ -104,7 +141,7 @@ def compare(directory, stem, reference):
     diff = max(norm([a - b for a, b in zip(f[k], fr[k])]) / norm(fr[k])
                for k in range(len(t)) if t[k] > 1 + 1e-9)
     return {"diff": diff, "osc": oscillation(t, f, fr), "its": sliding_mean(t, its),
-            "total": sum(its)}
+            "total": sum(its), "coulomb": coulomb(t, f)}
 
 
 def main():
@@ -123,11 +160,13 @@ def main():
     reference = read(os.path.join(directory, "analytic_reactions.csv"))
     t, its, f = reference
     analytic = sliding_mean(t, its)
-    print(f"analytic (STAS): {analytic:.2f} iterations per spiral step, {sum(its)} in all")
+    ratio, angle = coulomb(t, f)
+    print(f"analytic (STAS): {analytic:.2f} iterations per spiral step, {sum(its)} in all; "
+          f"Coulomb check: |F_t|/(mu N) off by {100 * ratio:.1f} %, angle {angle:.1f} deg")
     finest = read(os.path.join(directory, f"trough_nx{max(densities)}_smooth_reactions.csv"))
     print("| nx | h | master | force difference | to finest smooth | oscillation | "
-          "faceted/smooth | iterations/step (analytic) |")
-    print("|---|---|---|---|---|---|---|---|")
+          "faceted/smooth | iterations/step (analytic) | Coulomb: ratio, angle |")
+    print("|---|---|---|---|---|---|---|---|---|")
     for n in densities:
         result = {k: compare(directory, f"trough_nx{n}_{k}", reference)
                   for k in ("faceted", "smooth")}
@@ -137,7 +176,8 @@ def main():
             converged = compare(directory, f"trough_nx{n}_{kind}", finest)["diff"]
             print(f"| {n} | {4 / n:.3g} | {kind} | {100 * r['diff']:.2f} % | "
                   f"{100 * converged:.2f} % | {100 * r['osc']:.3f} % | {ratio} | "
-                  f"{r['its']:.2f} ({analytic:.2f}) |")
+                  f"{r['its']:.2f} ({analytic:.2f}) | {100 * r['coulomb'][0]:.1f} %, "
+                  f"{r['coulomb'][1]:.1f} deg |")
     return 0
 
 
