@@ -19,6 +19,7 @@ constexpr double kSymmetryTolerance = 1e-12;
 ContactPair::ContactPair(ContactPairConfig config, const FaceSet& master,
                          std::vector<PairPoint> points)
     : config_(std::move(config)), tracker_(master), points_(std::move(points)) {
+  tracker_.setSmooth(config_.smoothMaster);
   for (PairPoint& p : points_) buildItem(p);
 }
 
@@ -124,6 +125,14 @@ void ContactPair::initializeHistory(const AssemblyState& state) {
 }
 
 LocalStatus ContactPair::prepare(const AssemblyState& state) {
+  if (config_.smoothMaster && (!normalsReady_ || normalsTime_ != state.previousTime)) {
+    // Normals from the converged configuration at the step's start, fixed over the step (a
+    // cut-back retries from the same one): they keep an item's node list the segment's nodes,
+    // and the tangent is exact for this choice (beyond_the_paper.md).
+    tracker_.updateNormals(*state.previous);
+    normalsTime_ = state.previousTime;
+    normalsReady_ = true;
+  }
   if (!historyInitialized_) initializeHistory(state);
   if (!searchesMasterSegments(config_.kind)) {
     surfaceOffset_ = motion_ ? motion_(state.time) : Eigen::Vector3d::Zero();
@@ -148,6 +157,13 @@ PointSetup ContactPair::setupFor(const PairPoint& point) const {
   if (config_.augmented) {
     setup.history.multiplierNormal = point.multiplierNormal;
     setup.history.tractionAugmentation = point.tractionAugmentation;
+  }
+  if (config_.smoothMaster && point.segment >= 0) {
+    setup.layout.smoothMaster = true;
+    setup.layout.masterNormals = master().segmentNormals(point.segment);
+    if (point.layout.previousMasterCount > 0) {
+      setup.layout.previousMasterNormals = master().segmentNormals(point.committed.segment);
+    }
   }
   setup.parameter = point.xi;
   setup.gaussWeight = point.gaussWeight;

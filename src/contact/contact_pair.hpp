@@ -33,6 +33,10 @@ struct ContactPairConfig {
   bool augmented = false;
   double augmentationTolerance = 1e-3;
   int maxAugmentations = 100;
+  // Smoothed master (issue 16, part 2; NTS/STS with Quad4 masters): search, projection, gap,
+  // normal and curvature on Nagata patches (nagata.hpp) over nodal normals taken from the
+  // converged configuration at the start of each step and held fixed over it.
+  bool smoothMaster = false;
 };
 
 // A rigid translation of the STAS surface as a function of time (called serially).
@@ -127,6 +131,9 @@ class ContactPair : public Contribution {
   SurfaceMotion motion_;
   Eigen::Vector3d surfaceOffset_ = Eigen::Vector3d::Zero();
   bool historyInitialized_ = false;
+  // Smoothed master: the start-of-step time the nodal normals were computed for.
+  double normalsTime_ = 0;
+  bool normalsReady_ = false;
   int augmentations_ = 0;  // Uzawa updates in the current step
   std::string lastAugmentationMessage_;
   double stepDissipation_ = 0;

@@ -32,6 +32,17 @@ struct PointLayout {
   std::array<int, 9> previousMasterLocal{};  // it differs from the current one (eq. (47))
   shape::SurfaceType previousMasterType = shape::SurfaceType::Quad4;
   int nodeCount = 0;  // size of the item's node list
+  // Smoothed master (nagata.hpp, Quad4): the nodal normals of the current and the previous
+  // segment, held fixed over the step; the geometry (and the tangent) is that of the Nagata
+  // patch for these normals.
+  bool smoothMaster = false;
+  NodalNormals masterNormals{};
+  NodalNormals previousMasterNormals{};
+  const NodalNormals* currentNormals() const { return smoothMaster ? &masterNormals : nullptr; }
+  const NodalNormals* previousNormals() const {
+    if (!smoothMaster) return nullptr;
+    return previousMasterCount == 0 ? &masterNormals : &previousMasterNormals;
+  }
 };
 
 // History of a contact point, committed only when a step converges (DESIGN.md).
@@ -57,6 +68,7 @@ struct PointKinematics {
   SurfaceFrame<Scalar> frame;           // master frame at the contact point
   Eigen::Matrix<Scalar, 2, 1> xi;       // its parameter on the master segment
   std::array<Scalar, 9> masterShape{};  // N_m(xi) (xi may depend on the nodes)
+  std::array<Scalar, 4> edgeBlend{};    // smoothed master: f_e(xi) of nagata.hpp
   Vec3<Scalar> slavePoint;              // r_s
   Scalar gap;                           // g, eq. (27) (STAS: xi^3 of eq. (117))
   Vec3<Scalar> slip;                    // Delta rho, eq. (47) or -u of eq. (48)
@@ -133,7 +145,12 @@ void pointForce(const PointKinematics<Scalar>& kin, const PointResponse<Scalar>&
     force.template segment<3>(3 * layout.slaveLocal[a]) += layout.slaveShape[a] * traction;
   }
   for (int b = 0; b < layout.masterCount; ++b) {
-    force.template segment<3>(3 * layout.masterLocal[b]) -= kin.masterShape[b] * traction;
+    // Smoothed master: rho = sum_k M_k x_k with 3x3 shape matrices M_k (nagata.hpp), so the
+    // master share of the point force is M_k^T traction.
+    force.template segment<3>(3 * layout.masterLocal[b]) -=
+        layout.smoothMaster ? nagataShapeTranspose(b, kin.masterShape[b], kin.edgeBlend,
+                                                   layout.masterNormals, traction)
+                            : Vec3<Scalar>(kin.masterShape[b] * traction);
   }
 }
 

@@ -11,6 +11,7 @@
 #include <array>
 #include <type_traits>
 
+#include "contact/nagata.hpp"
 #include "fem/shape_functions.hpp"
 
 namespace cc::contact {
@@ -156,15 +157,28 @@ SurfaceFrame<Scalar> frameFromDerivatives(const Vec3<Scalar>& rho,
   return f;
 }
 
-// The complete frame at parameter xi of a segment.
+// rho, rho_i and rho_ij of a master segment at xi: the isoparametric interpolation of eq. (1),
+// or with nodal normals (Quad4 only) the smoothed Nagata patch of nagata.hpp, whose metric,
+// curvature and Christoffel symbols then follow from eqs. (4)-(15) unchanged.
+template <class Scalar>
+void interpolateSegment(shape::SurfaceType type, const NodeMatrix<Scalar>& nodes,
+                        const NodalNormals* normals, const Scalar& xi1, const Scalar& xi2,
+                        Vec3<Scalar>& rho, std::array<Vec3<Scalar>, 2>& rhoCov,
+                        std::type_identity_t<std::array<Vec3<Scalar>, 3>>* rhoSecond) {
+  const shape::SurfaceShape<Scalar> shape = shape::surfaceShape(type, xi1, xi2);
+  interpolateSurface(nodes, shape, rho, rhoCov, rhoSecond);
+  if (normals) addNagataCorrection(nodes, *normals, xi1, xi2, rho, rhoCov, rhoSecond);
+}
+
+// The complete frame at parameter xi of a segment (smoothed when `normals` is given).
 template <class Scalar>
 SurfaceFrame<Scalar> surfaceFrame(shape::SurfaceType type, const NodeMatrix<Scalar>& nodes,
-                                  const Scalar& xi1, const Scalar& xi2) {
-  const shape::SurfaceShape<Scalar> shape = shape::surfaceShape(type, xi1, xi2);
+                                  const Scalar& xi1, const Scalar& xi2,
+                                  const NodalNormals* normals = nullptr) {
   Vec3<Scalar> rho;
   std::array<Vec3<Scalar>, 2> rhoCov;
   std::array<Vec3<Scalar>, 3> rhoSecond;
-  interpolateSurface(nodes, shape, rho, rhoCov, &rhoSecond);
+  interpolateSegment(type, nodes, normals, xi1, xi2, rho, rhoCov, &rhoSecond);
   return frameFromDerivatives(rho, rhoCov, rhoSecond);
 }
 

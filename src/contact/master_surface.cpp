@@ -37,6 +37,10 @@ constexpr double kStayOnSegmentTolerance = 1e-6;
 // half segment as beyond a free edge, keeps the extrapolation short.
 constexpr double kRidgeTolerance = kFreeEdgeTolerance;
 
+// Smoothed master: a projection is refined on the Nagata patch only if the faceted one lies
+// within this distance of the segment in parameter space (see projectOn).
+constexpr double kSmoothRefineReach = 0.5;
+
 // Corners of edge e in the Quad4/Quad9 numbering: (0,1), (1,2), (2,3), (3,0).
 std::pair<int, int> edgeCorners(int edge) {
   return {edge, (edge + 1) % 4};
@@ -101,6 +105,69 @@ NodeMatrix<double> MasterSurface::segmentNodes(int segment,
   return nodes;
 }
 
+void MasterSurface::updateNormals(const Eigen::Matrix3Xd& coordinates) {
+  nodalNormals_.setZero(3, coordinates.cols());
+  for (int s = 0; s < segmentCount(); ++s) {
+    for (int k = 0; k < 4; ++k) {
+      const Eigen::Vector3d corner = coordinates.col(segments_(s, k));
+      const Eigen::Vector3d next = coordinates.col(segments_(s, (k + 1) % 4)) - corner;
+      const Eigen::Vector3d previous = coordinates.col(segments_(s, (k + 3) % 4)) - corner;
+      const Eigen::Vector3d cross = next.cross(previous);  // along rho_1 x rho_2 at the corner
+      const double angle = std::atan2(cross.norm(), next.dot(previous));
+      if (cross.norm() > 0) nodalNormals_.col(segments_(s, k)) += angle * cross.normalized();
+    }
+  }
+  for (Eigen::Index n = 0; n < nodalNormals_.cols(); ++n) {
+    const double length = nodalNormals_.col(n).norm();
+    if (length > 0) nodalNormals_.col(n) /= length;
+  }
+  // Per edge, from the same configuration: shared edges get the same scale from both sides.
+  tangentialScales_.resize(segmentCount());
+  for (int s = 0; s < segmentCount(); ++s) {
+    for (int e = 0; e < 4; ++e) {
+      const int i = segments_(s, nagataEdgeStart(e)), j = segments_(s, nagataEdgeEnd(e));
+      tangentialScales_[s][e] = nagataTangentialScale(nodalNormals_.col(i), nodalNormals_.col(j),
+                                                      coordinates.col(j) - coordinates.col(i));
+    }
+  }
+}
+
+NodalNormals MasterSurface::segmentNormals(int segment) const {
+  NodalNormals normals;
+  for (int k = 0; k < 4; ++k) normals[k] = nodalNormals_.col(segments_(segment, k));
+  normals.tangentialScale = tangentialScales_[segment];
+  return normals;
+}
+
+ProjectionResult MasterSurface::projectOn(int segment, const Eigen::Vector3d& point,
+                                          const Eigen::Vector2d& guess,
+                                          const Eigen::Matrix3Xd& coordinates) const {
+  const NodeMatrix<double> nodes = segmentNodes(segment, coordinates);
+  const ProjectionResult faceted = closestPointProjection(type_, nodes, point, guess);
+  // Smoothed: refine on the Nagata patch only near the segment. The patch is a cubic in xi
+  // whose extrapolation far beyond the segment curls back, and a point far away (a segment
+  // of the search grid's cell) found spurious stationary points of the distance there
+  // (slave points "projected" onto a segment 3 units away, at a gap of -3.8). The faceted
+  // projection decides whether the point is near the segment; the patch differs from it by
+  // O(h^2) curvature, far less than kSmoothRefineReach.
+  if (!smooth_ || !faceted.converged || largestExcess(faceted.xi) > kSmoothRefineReach) {
+    return faceted;
+  }
+  const NodalNormals normals = segmentNormals(segment);
+  return closestPointProjection(type_, nodes, point, faceted.xi, {}, &normals);
+}
+
+double MasterSurface::distanceTo(int segment, const Eigen::Vector2d& xi,
+                                 const Eigen::Vector3d& point,
+                                 const Eigen::Matrix3Xd& coordinates) const {
+  const NodalNormals normals = smooth_ ? segmentNormals(segment) : NodalNormals{};
+  Eigen::Vector3d rho;
+  std::array<Eigen::Vector3d, 2> tangents;
+  interpolateSegment(type_, segmentNodes(segment, coordinates), smooth_ ? &normals : nullptr, xi[0],
+                     xi[1], rho, tangents, nullptr);
+  return (point - rho).norm();
+}
+
 MasterSurface::CellKey MasterSurface::cellKey(const Eigen::Vector3i& cell) const {
   constexpr long long kOffset = 1 << 20;
   constexpr int kBits = 21;
@@ -145,17 +212,13 @@ SegmentProjection MasterSurface::walk(int start, const Eigen::Vector2d& guess,
   std::vector<int> visited;
   std::vector<Eigen::Vector2d> visitedXi;
   auto projectionOn = [&](int segment, const Eigen::Vector2d& xi) -> SegmentProjection {
-    const shape::SurfaceShape<double> shape = shape::surfaceShape(type_, xi[0], xi[1]);
-    Eigen::Vector3d rho = Eigen::Vector3d::Zero();
-    for (int k = 0; k < shape.count; ++k) rho += shape.value[k] * coordinates.col(node(segment, k));
-    return {segment, xi, (point - rho).norm()};
+    return {segment, xi, distanceTo(segment, xi, point, coordinates)};
   };
   int segment = start;
   Eigen::Vector2d initial = guess;
   for (int hop = 0; hop < kMaxWalkHops && segment >= 0; ++hop) {
     visited.push_back(segment);
-    const ProjectionResult p =
-        closestPointProjection(type_, segmentNodes(segment, coordinates), point, initial);
+    const ProjectionResult p = projectOn(segment, point, initial, coordinates);
     if (!p.converged) {
       SegmentProjection notFound;
       notFound.projectionBrokeDown = p.brokeDown;
@@ -203,13 +266,9 @@ SegmentProjection MasterSurface::search(const Eigen::Vector3d& point,
   const auto cell = cells_.find(cellKey(cellOf(point)));
   if (cell == cells_.end()) return best;
   for (int segment : cell->second) {
-    const ProjectionResult p = closestPointProjection(type_, segmentNodes(segment, coordinates),
-                                                      point, Eigen::Vector2d::Zero());
+    const ProjectionResult p = projectOn(segment, point, Eigen::Vector2d::Zero(), coordinates);
     if (!p.converged) continue;
-    const shape::SurfaceShape<double> shape = shape::surfaceShape(type_, p.xi[0], p.xi[1]);
-    Eigen::Vector3d rho = Eigen::Vector3d::Zero();
-    for (int k = 0; k < shape.count; ++k) rho += shape.value[k] * coordinates.col(node(segment, k));
-    const SegmentProjection candidate{segment, p.xi, (point - rho).norm()};
+    const SegmentProjection candidate{segment, p.xi, distanceTo(segment, p.xi, point, coordinates)};
     SegmentProjection& slot = accepts(segment, p.xi, kInsideTolerance) ? best : nearestOutside;
     if (!slot.found() || candidate.distance < slot.distance) slot = candidate;
   }

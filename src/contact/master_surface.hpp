@@ -38,6 +38,17 @@ class MasterSurface {
   int neighbour(int segment, int edge) const { return neighbours_[segment][edge]; }
   NodeMatrix<double> segmentNodes(int segment, const Eigen::Matrix3Xd& coordinates) const;
 
+  // Smoothed geometry (issue 16, part 2; Quad4 only): once switched on, projections use the
+  // Nagata patch of nagata.hpp over the nodal normals of the last updateNormals().
+  void setSmooth(bool smooth) { smooth_ = smooth; }
+  bool smooth() const { return smooth_; }
+  // Nodal normals of the surface at `coordinates`: at each node the average of the adjacent
+  // segments' corner normals weighted by their corner angles (Thuermer & Wuethrich 1998; on a
+  // mesh symmetric about the node, e.g. a uniform one on a cylinder, the exact normal up to
+  // O(h^2)).
+  void updateNormals(const Eigen::Matrix3Xd& coordinates);
+  NodalNormals segmentNormals(int segment) const;
+
   // Rebuilds the bucket grid for the current coordinates (once per step or when points get
   // lost); segment boxes grow by `reachInSegments` times the mean segment size (expected
   // maximum gap + slip per step). Relative to the segments, so that a cell holds a bounded
@@ -60,7 +71,18 @@ class MasterSurface {
   CellKey cellKey(const Eigen::Vector3i& cell) const;
   Eigen::Vector3i cellOf(const Eigen::Vector3d& point) const;
 
+  // The projection of `point` on `segment` (smoothed when switched on).
+  ProjectionResult projectOn(int segment, const Eigen::Vector3d& point,
+                             const Eigen::Vector2d& guess,
+                             const Eigen::Matrix3Xd& coordinates) const;
+  // Distance from `point` to the segment's point at xi.
+  double distanceTo(int segment, const Eigen::Vector2d& xi, const Eigen::Vector3d& point,
+                    const Eigen::Matrix3Xd& coordinates) const;
+
   shape::SurfaceType type_ = shape::SurfaceType::Quad4;
+  bool smooth_ = false;
+  Eigen::Matrix3Xd nodalNormals_;                        // per mesh node (zero off the surface)
+  std::vector<std::array<double, 4>> tangentialScales_;  // per segment edge (nagata.hpp)
   Connectivity segments_;
   std::vector<std::array<int, 4>> neighbours_;
   double typicalSize_ = 1;

@@ -35,9 +35,9 @@ PointEvaluation evaluatePoint(const PointSetup& setup, const NodeMatrix<double>&
     if (!kin) return e;
     e.kinematics = *kin;
   } else {
-    const ProjectionResult projection =
-        closestPointProjection(setup.layout.masterType, masterNodesOf(setup, nodes),
-                               slavePointOf(setup, nodes), setup.parameter);
+    const ProjectionResult projection = closestPointProjection(
+        setup.layout.masterType, masterNodesOf(setup, nodes), slavePointOf(setup, nodes),
+        setup.parameter, {}, setup.layout.currentNormals());
     if (!projection.converged) return e;
     e.xi = projection.xi;
     e.kinematics = projectedPointKinematics(nodes, setup.layout, setup.slave, e.xi, setup.history);

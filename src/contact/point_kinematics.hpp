@@ -39,10 +39,11 @@ NodeMatrix<Scalar> gatherNodes(const NodeMatrix<Scalar>& itemNodes, const std::a
 
 template <class Scalar>
 void setMasterFrame(PointKinematics<Scalar>& kin, const NodeMatrix<Scalar>& masterNodes,
-                    shape::SurfaceType type, const Scalar& xi1, const Scalar& xi2) {
-  kin.frame = surfaceFrame(type, masterNodes, xi1, xi2);
-  const shape::SurfaceShape<Scalar> shape = shape::surfaceShape(type, xi1, xi2);
+                    const PointLayout& layout, const Scalar& xi1, const Scalar& xi2) {
+  kin.frame = surfaceFrame(layout.masterType, masterNodes, xi1, xi2, layout.currentNormals());
+  const shape::SurfaceShape<Scalar> shape = shape::surfaceShape(layout.masterType, xi1, xi2);
   for (int k = 0; k < shape.count; ++k) kin.masterShape[k] = shape.value[k];
+  if (layout.smoothMaster) kin.edgeBlend = nagataBlend(xi1, xi2).value;
 }
 
 // The master material point of the last converged projection, taken with the current
@@ -59,10 +60,9 @@ void previousMaterialPoint(const NodeMatrix<Scalar>& itemNodes, const PointLayou
   const NodeMatrix<Scalar> previousNodes =
       sameSegment ? masterNodes
                   : gatherNodes(itemNodes, layout.previousMasterLocal, layout.previousMasterCount);
-  const shape::SurfaceShape<Scalar> shape =
-      shape::surfaceShape(type, Scalar(history.xi[0]), Scalar(history.xi[1]));
   std::array<Vec3<Scalar>, 2> tangents;
-  interpolateSurface(previousNodes, shape, point, tangents, nullptr);
+  interpolateSegment(type, previousNodes, layout.previousNormals(), Scalar(history.xi[0]),
+                     Scalar(history.xi[1]), point, tangents, nullptr);
   const Mat2<Scalar> inverseMetric = contravariantMetric(covariantMetric(tangents));
   convectedTraction.setZero();
   for (int i = 0; i < 2; ++i) {
@@ -88,9 +88,9 @@ PointKinematics<Scalar> projectedPointKinematics(const NodeMatrix<Scalar>& itemN
   }
   const NodeMatrix<Scalar> masterNodes =
       detail::gatherNodes(itemNodes, layout.masterLocal, layout.masterCount);
-  const Eigen::Matrix<Scalar, 2, 1> parameter =
-      differentiableProjection(layout.masterType, masterNodes, kin.slavePoint, xi);
-  detail::setMasterFrame(kin, masterNodes, layout.masterType, parameter[0], parameter[1]);
+  const Eigen::Matrix<Scalar, 2, 1> parameter = differentiableProjection(
+      layout.masterType, masterNodes, kin.slavePoint, xi, layout.currentNormals());
+  detail::setMasterFrame(kin, masterNodes, layout, parameter[0], parameter[1]);
   kin.xi = parameter;
   kin.gap = (kin.slavePoint - kin.frame.rho).dot(kin.frame.normal);
   kin.slip.setZero();
@@ -131,7 +131,7 @@ std::optional<PointKinematics<Scalar>> analyticalSurfaceKinematics(
   PointKinematics<Scalar> kin;
   const NodeMatrix<Scalar> masterNodes =
       detail::gatherNodes(itemNodes, layout.masterLocal, layout.masterCount);
-  detail::setMasterFrame(kin, masterNodes, layout.masterType, Scalar(xi[0]), Scalar(xi[1]));
+  detail::setMasterFrame(kin, masterNodes, layout, Scalar(xi[0]), Scalar(xi[1]));
   kin.xi = xi.cast<Scalar>();
   const std::optional<Scalar> gap =
       normalLineGap(surface, surfaceOffset, kin.frame.rho, kin.frame.normal);

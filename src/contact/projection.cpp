@@ -11,14 +11,13 @@ namespace {
 // Gradient g_i = rho_i . (r - rho) (= -F'/2, eq. (24)) and Hessian H_ij = a_ij - rho_ij . (r -
 // rho) (= F''/2, eq. (25)) of the squared distance at xi.
 void distanceDerivatives(shape::SurfaceType type, const NodeMatrix<double>& nodes,
-                         const Eigen::Vector3d& point, const Eigen::Vector2d& xi,
-                         Eigen::Vector2d& gradient, Eigen::Matrix2d& hessian,
-                         Eigen::Matrix2d& metric) {
-  const shape::SurfaceShape<double> shape = shape::surfaceShape(type, xi[0], xi[1]);
+                         const NodalNormals* normals, const Eigen::Vector3d& point,
+                         const Eigen::Vector2d& xi, Eigen::Vector2d& gradient,
+                         Eigen::Matrix2d& hessian, Eigen::Matrix2d& metric) {
   Eigen::Vector3d rho;
   std::array<Eigen::Vector3d, 2> rhoCov;
   std::array<Eigen::Vector3d, 3> rhoSecond;
-  interpolateSurface(nodes, shape, rho, rhoCov, &rhoSecond);
+  interpolateSegment(type, nodes, normals, xi[0], xi[1], rho, rhoCov, &rhoSecond);
   const Eigen::Vector3d distance = point - rho;
   metric = covariantMetric(rhoCov);
   for (int i = 0; i < 2; ++i) {
@@ -38,13 +37,14 @@ bool positiveDefinite(const Eigen::Matrix2d& m) {
 ProjectionResult closestPointProjection(shape::SurfaceType type, const NodeMatrix<double>& nodes,
                                         const Eigen::Vector3d& point,
                                         const Eigen::Vector2d& initialGuess,
-                                        const ProjectionOptions& options) {
+                                        const ProjectionOptions& options,
+                                        const NodalNormals* normals) {
   ProjectionResult result;
   Eigen::Vector2d xi = initialGuess;
   Eigen::Vector2d gradient;
   Eigen::Matrix2d hessian, metric;
   for (int iteration = 1; iteration <= options.maxIterations; ++iteration) {
-    distanceDerivatives(type, nodes, point, xi, gradient, hessian, metric);
+    distanceDerivatives(type, nodes, normals, point, xi, gradient, hessian, metric);
     // Newton step of eq. (23); where the full Hessian is not positive definite (far from a
     // curved segment) fall back to the Gauss-Newton step with the metric alone.
     const Eigen::Matrix2d& system = positiveDefinite(hessian) ? hessian : metric;

@@ -31,10 +31,12 @@ struct ProjectionResult {
   }
 };
 
+// `normals`: the smoothed (Nagata) segment of nagata.hpp, else the isoparametric one.
 ProjectionResult closestPointProjection(shape::SurfaceType type, const NodeMatrix<double>& nodes,
                                         const Eigen::Vector3d& point,
                                         const Eigen::Vector2d& initialGuess,
-                                        const ProjectionOptions& options = {});
+                                        const ProjectionOptions& options = {},
+                                        const NodalNormals* normals = nullptr);
 
 // One Newton step of eq. (23) taken in the scalar type Scalar at the converged parameter: the
 // value is unchanged, the derivative is that of the exact projection xi(x) (implicit function).
@@ -42,14 +44,14 @@ template <class Scalar>
 Eigen::Matrix<Scalar, 2, 1> differentiableProjection(shape::SurfaceType type,
                                                      const NodeMatrix<Scalar>& nodes,
                                                      const Vec3<Scalar>& point,
-                                                     const Eigen::Vector2d& converged) {
+                                                     const Eigen::Vector2d& converged,
+                                                     const NodalNormals* normals = nullptr) {
   const Scalar xi1(converged[0]);
   const Scalar xi2(converged[1]);
-  const shape::SurfaceShape<Scalar> shape = shape::surfaceShape(type, xi1, xi2);
   Vec3<Scalar> rho;
   std::array<Vec3<Scalar>, 2> rhoCov;
   std::array<Vec3<Scalar>, 3> rhoSecond;
-  interpolateSurface(nodes, shape, rho, rhoCov, &rhoSecond);
+  interpolateSegment(type, nodes, normals, xi1, xi2, rho, rhoCov, &rhoSecond);
   const Vec3<Scalar> distance = point - rho;
   Eigen::Matrix<Scalar, 2, 1> gradient;  // F'/(-2), eq. (24)
   Mat2<Scalar> hessian;                  // F''/2, eq. (25)

@@ -19,6 +19,9 @@ class SegmentTracker {
   explicit SegmentTracker(const FaceSet& master) : master_(master) {}
 
   const MasterSurface& master() const { return master_; }
+  // Smoothed master (nagata.hpp): switch on, and the nodal normals for a step.
+  void setSmooth(bool smooth) { master_.setSmooth(smooth); }
+  void updateNormals(const Eigen::Matrix3Xd& x) { master_.updateNormals(x); }
 
   // Assigns every point its master segment and parameter at the coordinates x; `moved` receives
   // the indices of the points whose segment changed. Fails with ProjectionFailure when a point's

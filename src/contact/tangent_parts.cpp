@@ -18,17 +18,27 @@ VectorXd positionTranspose(const PointKinematics<double>& kin, const PointLayout
     v.segment<3>(3 * layout.slaveLocal[a]) += layout.slaveShape[a] * u;
   }
   for (int b = 0; b < layout.masterCount; ++b) {
-    v.segment<3>(3 * layout.masterLocal[b]) -= kin.masterShape[b] * u;
+    // Smoothed master: the shape matrices M_k of nagata.hpp instead of N_k I.
+    v.segment<3>(3 * layout.masterLocal[b]) -=
+        layout.smoothMaster
+            ? nagataShapeTranspose(b, kin.masterShape[b], kin.edgeBlend, layout.masterNormals, u)
+            : Eigen::Vector3d(kin.masterShape[b] * u);
   }
   return v;
 }
 
-// A_j^T u: master blocks N_m,j u (A_j maps dofs to delta rho_,j).
+// A_j^T u: master blocks N_m,j u (A_j maps dofs to delta rho_,j); on a smoothed master
+// M_k,j^T u with the blend derivatives f_e,j.
 VectorXd derivativeTranspose(const shape::SurfaceShape<double>& shape, const PointLayout& layout,
-                             int j, const Eigen::Vector3d& u) {
+                             const NagataBlend<double>& blend, int j, const Eigen::Vector3d& u) {
   VectorXd v = VectorXd::Zero(3 * layout.nodeCount);
+  std::array<double, 4> weights{};
+  for (int e = 0; e < 4; ++e) weights[e] = blend.first[e][j];
   for (int b = 0; b < layout.masterCount; ++b) {
-    v.segment<3>(3 * layout.masterLocal[b]) += shape.first[b][j] * u;
+    v.segment<3>(3 * layout.masterLocal[b]) +=
+        layout.smoothMaster
+            ? nagataShapeTranspose(b, shape.first[b][j], weights, layout.masterNormals, u)
+            : Eigen::Vector3d(shape.first[b][j] * u);
   }
   return v;
 }
@@ -48,6 +58,7 @@ TangentContext makeTangentContext(const PointKinematics<double>& kin, const Poin
                                   const Eigen::Vector2d& xi, const Eigen::Vector3d& gapDirection) {
   const SurfaceFrame<double>& f = kin.frame;
   const shape::SurfaceShape<double> shape = shape::surfaceShape(layout.masterType, xi[0], xi[1]);
+  const NagataBlend<double> blend = nagataBlend(xi[0], xi[1]);
   TangentContext c;
   c.frame = &kin.frame;
   c.weight = kin.weight;
@@ -57,10 +68,11 @@ TangentContext makeTangentContext(const PointKinematics<double>& kin, const Poin
   for (int i = 0; i < 2; ++i) {
     c.Arho[i] = positionTranspose(kin, layout, f.rhoCov[i]);
     c.ArhoContra[i] = positionTranspose(kin, layout, f.rhoContra[i]);
-    c.Ajn[i] = derivativeTranspose(shape, layout, i, f.normal);
+    c.Ajn[i] = derivativeTranspose(shape, layout, blend, i, f.normal);
   }
   for (int j = 0; j < 2; ++j) {
-    for (int i = 0; i < 2; ++i) c.Ajrho[j][i] = derivativeTranspose(shape, layout, j, f.rhoCov[i]);
+    for (int i = 0; i < 2; ++i)
+      c.Ajrho[j][i] = derivativeTranspose(shape, layout, blend, j, f.rhoCov[i]);
   }
   return c;
 }

@@ -180,6 +180,13 @@ void handleContact(const ParsedLine& line, DeckState& state) {
   }
   contact.integrationPoints = line.integer("points");
   setTangentParts(line, context, contact);
+  contact.masterSurface = choiceValue(masterSurfaces(), line.text("surface"));
+  if (contact.kind == ContactSpec::Kind::SegmentToAnalytical && line.given("surface") &&
+      contact.masterSurface == ContactSpec::MasterSurface::Smooth) {
+    fail(line.value("surface").where,
+         "surface=smooth applies to sts and nts pairs only (stas integrates on the "
+         "master's own segments)");
+  }
   contact.where = line.where();
   const std::string& kindName = line.positional(0).text;
   state.faceSetUses.push_back(

@@ -214,6 +214,10 @@ KeywordDecl contactKeyword() {
                .withDefault("full"),
            enumListValue("parts", choiceNames(tangentParts()),
                          "explicit list of assembled tangent parts (instead of tangent=)"),
+           enumValue("surface", choiceNames(masterSurfaces()),
+                     "sts, nts: the master segments as meshed, or smoothed (Nagata patches "
+                     "over nodal normals, Quad4 masters)")
+               .withDefault("faceted"),
            identifierValue("name", "pair name in the output (default pairK for the K-th pair)")},
       .itemName = "name",
       .notes =
@@ -228,7 +232,13 @@ KeywordDecl contactKeyword() {
           "re-solves each step with updated multipliers lambda_N, lambda_T (N = min(0, "
           "lambda_N + eps_N g), friction cone on the augmented traction) until the updates "
           "(normal, and tangential at sticking points), integrated over the surface, are "
-          "below aug_tol times the normal contact force.",
+          "below aug_tol times the normal contact force. surface=smooth replaces each "
+          "Quad4 master segment by its Nagata patch (quadratic edges orthogonal to the nodal "
+          "normals, angle-weighted averages of the adjacent segments' normals in the "
+          "converged configuration at the start of each step, held fixed over the step): "
+          "search, projection, gap, normal, curvature and the tangent (exact for the fixed "
+          "normals) then follow the C0 surface with continuous normals at the nodes "
+          "(docs/verification/smooth_master.md).",
       .handler = handleContact};
 }
 

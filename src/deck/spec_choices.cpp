@@ -48,6 +48,13 @@ const Choices<ContactSpec::Enforcement>& contactEnforcements() {
   return choices;
 }
 
+const Choices<ContactSpec::MasterSurface>& masterSurfaces() {
+  static const Choices<ContactSpec::MasterSurface> choices = {
+      {"faceted", ContactSpec::MasterSurface::Faceted},
+      {"smooth", ContactSpec::MasterSurface::Smooth}};
+  return choices;
+}
+
 const Choices<NewtonSpec::Criterion>& convergenceCriteria() {
   static const Choices<NewtonSpec::Criterion> choices = {
       {"energy", NewtonSpec::Criterion::Energy},

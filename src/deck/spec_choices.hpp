@@ -40,6 +40,7 @@ const Choices<int>& thicknessAxes();  // auto = -1, x/y/z = 0/1/2 (ElementBlockS
 const Choices<RigidSurfaceSpec::Shape>& rigidShapes();
 const Choices<ContactSpec::Kind>& contactKinds();
 const Choices<ContactSpec::Enforcement>& contactEnforcements();
+const Choices<ContactSpec::MasterSurface>& masterSurfaces();
 const Choices<NewtonSpec::Criterion>& convergenceCriteria();
 const Choices<LinearSolverSpec::Method>& linearSolverMethods();
 const Choices<bool TangentPartsSpec::*>& tangentParts();  // snake_case field names

@@ -181,6 +181,7 @@ contact::ContactPairConfig pairConfig(const ContactSpec& spec) {
                            ? contact::TangentMode::Exact
                            : contact::TangentMode::Paper;
   config.parts = contactTangentParts(spec.parts);
+  config.smoothMaster = spec.masterSurface == ContactSpec::MasterSurface::Smooth;
   return config;
 }
 
@@ -243,6 +244,11 @@ std::unique_ptr<contact::ContactPair> makePair(const ContactSpec& spec, const Pr
     }
     return contact::ContactPair::segmentToAnalytical(config, master, rigidSurface(*rigid),
                                                      surfaceMotion(*rigid));
+  }
+  if (config.smoothMaster && master.type != CellType::Quad4) {
+    throw InputError(spec.where, fmt::format("contact '{}': surface=smooth needs a Quad4 "
+                                             "master surface (Nagata patches over its corners)",
+                                             spec.name));
   }
   const FaceSet& slave = requireFaceSet(mesh, spec.slave, spec.where, "slave");
   requireAttached(slave, active, spec.where);

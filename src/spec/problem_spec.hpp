@@ -123,6 +123,10 @@ struct ContactSpec {
   int integrationPoints = 2;            // Gauss points per direction (STS, STAS)
   TangentMode tangentMode = TangentMode::Paper;
   TangentPartsSpec parts;
+  // Faceted: the master segments' own interpolation, as in the paper. Smooth: Nagata patches
+  // over nodal normals (contact/nagata.hpp; sts and nts with Quad4 masters), issue 16 part 2.
+  enum class MasterSurface { Faceted, Smooth };
+  MasterSurface masterSurface = MasterSurface::Faceted;
   SourceLocation where;
 };
 

@@ -1,5 +1,6 @@
 // Contact point tangents against central finite differences of the contact residual, for each
-// kind (NTS, STS, STAS), in stick and slide, on flat and curved masters (issue 4).
+// kind (NTS, STS, STAS), in stick and slide, on flat and curved masters (issue 4), and on the
+// smoothed (Nagata) linear master of issue 16 part 2, with its nodal normals held fixed.
 #include <gtest/gtest.h>
 
 #include <Eigen/Core>
@@ -43,6 +44,26 @@ NodeMatrix<double> curvedQuad9() {
   return nodes;
 }
 
+// A linear (Quad4) master segment on the curved surface of curvedQuad9, smoothed by Nagata
+// patches over the surface's exact normals at its corners (issue 16, part 2): the curvature
+// parts of the tangent act on a linear mesh.
+NodeMatrix<double> curvedQuad4() {
+  return curvedQuad9().leftCols(4);
+}
+
+NodalNormals curvedSurfaceNormals() {
+  NodalNormals normals;
+  const NodeMatrix<double> nodes = curvedQuad4();
+  for (int k = 0; k < 4; ++k) {
+    const double x = nodes(0, k), y = nodes(1, k);
+    // z = -0.12 x^2 - 0.08 y^2 + 0.03 x y: n ~ (-z_x, -z_y, 1).
+    normals[k] = Vector3d(0.24 * x - 0.03 * y, 0.16 * y - 0.03 * x, 1).normalized();
+  }
+  return normals;
+}
+
+const NodalNormals kSmoothNormals = curvedSurfaceNormals();
+
 // A slave Quad4 segment facing the master (normal -z), slightly penetrating it.
 NodeMatrix<double> slaveQuad4(double depth) {
   NodeMatrix<double> nodes(3, 4);
@@ -85,20 +106,26 @@ LawParameters law(double friction) {
 
 // NTS: one slave node at `slavePoint` against `master`; slip `slipScale` times a fixed
 // direction in the parameter plane; previous traction of magnitude `traction`.
+// `normals`: a smoothed (Nagata) Quad4 master over these nodal normals.
 PointCase nodeToSegment(const NodeMatrix<double>& master, shape::SurfaceType type,
                         const Vector3d& slavePoint, double friction, double slipScale,
-                        double traction) {
+                        double traction, const NodalNormals* normals = nullptr) {
   PointCase c;
   c.setup.kind = PointKind::NodeToSegment;
   c.setup.layout = makeLayout(type, 1);
+  if (normals) {
+    c.setup.layout.smoothMaster = true;
+    c.setup.layout.masterNormals = *normals;
+  }
   c.setup.layout.slaveShape[0] = 1.0;
   c.setup.slave.nodalArea = 0.7;
   c.setup.law = law(friction);
   c.nodes.resize(3, c.setup.layout.nodeCount);
   c.nodes.leftCols(c.setup.layout.masterCount) = master;
   c.nodes.col(c.setup.layout.masterCount) = slavePoint;
-  const ProjectionResult p = closestPointProjection(type, master, slavePoint, Vector2d::Zero());
-  const SurfaceFrame<double> f = surfaceFrame<double>(type, master, p.xi[0], p.xi[1]);
+  const ProjectionResult p =
+      closestPointProjection(type, master, slavePoint, Vector2d::Zero(), {}, normals);
+  const SurfaceFrame<double> f = surfaceFrame<double>(type, master, p.xi[0], p.xi[1], normals);
   const Vector3d tangentTraction = traction * (f.rhoCov[0] - 0.4 * f.rhoCov[1]).normalized();
   c.setup.history = historyWith(p.xi - slipScale * Vector2d(0.7, 0.3), tangentTraction);
   c.setup.parameter = p.xi;
@@ -108,10 +135,14 @@ PointCase nodeToSegment(const NodeMatrix<double>& master, shape::SurfaceType typ
 // STS: Gauss point `gauss` of a slave Quad4 against `master`.
 PointCase segmentToSegment(const NodeMatrix<double>& master, shape::SurfaceType type,
                            double friction, double slipScale, double traction, bool freezeArea,
-                           double depth = 0.003) {
+                           double depth = 0.003, const NodalNormals* normals = nullptr) {
   PointCase c;
   c.setup.kind = PointKind::SegmentToSegment;
   c.setup.layout = makeLayout(type, 4);
+  if (normals) {
+    c.setup.layout.smoothMaster = true;
+    c.setup.layout.masterNormals = *normals;
+  }
   const Vector2d gauss(0.31, -0.57);
   const shape::SurfaceShape<double> shape =
       shape::surfaceShape(shape::SurfaceType::Quad4, gauss[0], gauss[1]);
@@ -131,8 +162,9 @@ PointCase segmentToSegment(const NodeMatrix<double>& master, shape::SurfaceType 
     c.setup.slave.frozenAreaElement = tangents[0].cross(tangents[1]).norm();
   }
   const Vector3d slavePoint = slave * Eigen::Map<const Eigen::Vector4d>(shape.value.data());
-  const ProjectionResult p = closestPointProjection(type, master, slavePoint, Vector2d::Zero());
-  const SurfaceFrame<double> f = surfaceFrame<double>(type, master, p.xi[0], p.xi[1]);
+  const ProjectionResult p =
+      closestPointProjection(type, master, slavePoint, Vector2d::Zero(), {}, normals);
+  const SurfaceFrame<double> f = surfaceFrame<double>(type, master, p.xi[0], p.xi[1], normals);
   const Vector3d tangentTraction = traction * (f.rhoCov[1] + 0.2 * f.rhoCov[0]).normalized();
   c.setup.history = historyWith(p.xi + slipScale * Vector2d(0.5, -0.6), tangentTraction);
   c.setup.parameter = p.xi;
@@ -262,6 +294,51 @@ TEST(NormalTangent, SegmentToSegmentCurvedWithConstantAreaIsExactToSecondOrderIn
       4e-3);
 }
 
+// The smoothed Quad4 master (Nagata patch): the same second-order exactness, now with the
+// curvature h_ij of the patch on a linear segment.
+TEST(NormalTangent, NodeToSegmentSmoothQuad4IsExactToSecondOrderInGap) {
+  const PointCase probe = nodeToSegment(curvedQuad4(), shape::SurfaceType::Quad4,
+                                        Vector3d(0.27, 0.18, 0), 0, 0, 0, &kSmoothNormals);
+  const double surfaceHeight = -evaluatePoint(probe.setup, probe.nodes).kinematics.gap;
+  expectNormalTangentExactUpToSecondOrder(
+      [&](double depth) {
+        return nodeToSegment(curvedQuad4(), shape::SurfaceType::Quad4,
+                             Vector3d(0.27, 0.18, surfaceHeight - depth), 0, 0, 0, &kSmoothNormals);
+      },
+      4e-3);
+}
+
+TEST(NormalTangent, SegmentToSegmentSmoothQuad4WithConstantAreaIsExactToSecondOrderInGap) {
+  const PointCase probe = segmentToSegment(curvedQuad4(), shape::SurfaceType::Quad4, 0, 0, 0, true,
+                                           0.0, &kSmoothNormals);
+  const double surfaceHeight = evaluatePoint(probe.setup, probe.nodes).kinematics.gap;
+  expectNormalTangentExactUpToSecondOrder(
+      [&](double depth) {
+        return segmentToSegment(curvedQuad4(), shape::SurfaceType::Quad4, 0, 0, 0, true,
+                                depth + surfaceHeight, &kSmoothNormals);
+      },
+      4e-3);
+}
+
+// On the smoothed linear segment the curvature part is needed for that exactness (on the
+// faceted one h_ij = 0 and it is skipped): guards against a smoothing that does not reach the
+// tangent.
+TEST(NormalTangent, CurvaturePartMattersOnSmoothQuad4) {
+  const PointCase probe = nodeToSegment(curvedQuad4(), shape::SurfaceType::Quad4,
+                                        Vector3d(0.27, 0.18, 0), 0, 0, 0, &kSmoothNormals);
+  const double surfaceHeight = -evaluatePoint(probe.setup, probe.nodes).kinematics.gap;
+  const PointCase c =
+      nodeToSegment(curvedQuad4(), shape::SurfaceType::Quad4,
+                    Vector3d(0.27, 0.18, surfaceHeight - 0.01), 0, 0, 0, &kSmoothNormals);
+  TangentParts noCurvature;
+  noCurvature.normalCurvature = false;
+  const MatrixXd reference = finiteDifferenceTangent(c);
+  const double without = relativeError(tangent(c, TangentMode::Paper, noCurvature), reference);
+  const double with = relativeError(tangent(c, TangentMode::Paper, {}), reference);
+  EXPECT_GT(without, 1e-3);
+  EXPECT_LT(with, 0.05 * without);
+}
+
 // Without the rotational and curvature parts the normal tangent is not exact on a curved
 // master: the parts matter (guards against a test that cannot fail).
 TEST(NormalTangent, MainPartAloneIsNotExactOnCurvedMaster) {
@@ -303,6 +380,22 @@ TEST(ExactTangent, MatchesFiniteDifferencesForAllKindsAndStates) {
       {"sts curved slip",
        segmentToSegment(curvedQuad9(), shape::SurfaceType::Quad9, 0.3, 5e-2, 2.0, false, 0.03),
        ContactState::Slip},
+      {"nts smooth stick",
+       nodeToSegment(curvedQuad4(), shape::SurfaceType::Quad4, kSlaveBelowCurved, 0.5, 1e-3, 1.0,
+                     &kSmoothNormals),
+       ContactState::Stick},
+      {"nts smooth slip",
+       nodeToSegment(curvedQuad4(), shape::SurfaceType::Quad4, kSlaveBelowCurved, 0.3, 5e-2, 4.0,
+                     &kSmoothNormals),
+       ContactState::Slip},
+      {"sts smooth stick",
+       segmentToSegment(curvedQuad4(), shape::SurfaceType::Quad4, 0.5, 1e-3, 1.0, false, 0.03,
+                        &kSmoothNormals),
+       ContactState::Stick},
+      {"sts smooth slip",
+       segmentToSegment(curvedQuad4(), shape::SurfaceType::Quad4, 0.3, 5e-2, 2.0, false, 0.03,
+                        &kSmoothNormals),
+       ContactState::Slip},
       {"stas plane stick", analyticalSurface(flatSurface, 0.5, 1e-3, 1.0), ContactState::Stick},
       {"stas parabola slip", analyticalSurface(curvedSurface, 0.3, 5e-2, 2.0), ContactState::Slip},
   };
@@ -319,6 +412,14 @@ TEST(ExactTangent, MatchesFiniteDifferencesForAllKindsAndStates) {
 TEST(PaperTangent, StickTangentIsSymmetric) {
   const PointCase c =
       nodeToSegment(curvedQuad9(), shape::SurfaceType::Quad9, kSlaveBelowCurved, 0.5, 1e-3, 1.0);
+  ASSERT_EQ(stateOf(c), ContactState::Stick);
+  const MatrixXd K = tangent(c, TangentMode::Paper, {});
+  EXPECT_LT((K - K.transpose()).norm(), 1e-12 * K.norm());
+}
+
+TEST(PaperTangent, StickTangentIsSymmetricOnSmoothMaster) {
+  const PointCase c = nodeToSegment(curvedQuad4(), shape::SurfaceType::Quad4, kSlaveBelowCurved,
+                                    0.5, 1e-3, 1.0, &kSmoothNormals);
   ASSERT_EQ(stateOf(c), ContactState::Stick);
   const MatrixXd K = tangent(c, TangentMode::Paper, {});
   EXPECT_LT((K - K.transpose()).norm(), 1e-12 * K.norm());
@@ -374,6 +475,25 @@ PointCase nodeToSegmentScaled(bool curved, double s, double slip) {
                        kFriction, slip * s, kTractionFraction * kFriction * kPenaltyNormal * s);
 }
 
+// The smoothed Quad4 master: slave node at depth s below the patch.
+PointCase nodeToSegmentSmoothScaled(double s, double slip) {
+  const PointCase probe = nodeToSegment(curvedQuad4(), shape::SurfaceType::Quad4,
+                                        Vector3d(0.27, 0.18, 0), 0, 0, 0, &kSmoothNormals);
+  const double surface = -evaluatePoint(probe.setup, probe.nodes).kinematics.gap;
+  return nodeToSegment(curvedQuad4(), shape::SurfaceType::Quad4, Vector3d(0.27, 0.18, surface - s),
+                       kFriction, slip * s, kTractionFraction * kFriction * kPenaltyNormal * s,
+                       &kSmoothNormals);
+}
+
+PointCase segmentToSegmentSmoothScaled(double s, double slip) {
+  const PointCase probe = segmentToSegment(curvedQuad4(), shape::SurfaceType::Quad4, 0, 0, 0, true,
+                                           0.0, &kSmoothNormals);
+  const double height = evaluatePoint(probe.setup, probe.nodes).kinematics.gap;
+  return segmentToSegment(curvedQuad4(), shape::SurfaceType::Quad4, kFriction, slip * s,
+                          kTractionFraction * kFriction * kPenaltyNormal * s, true, height + s,
+                          &kSmoothNormals);
+}
+
 PointCase segmentToSegmentScaled(double s, double slip) {
   const PointCase probe =
       segmentToSegment(curvedQuad9(), shape::SurfaceType::Quad9, 0, 0, 0, true, 0.0);
@@ -415,6 +535,14 @@ TEST(PaperTangent, TangentialPartsDifferFromDiscreteAlgorithmAtFirstOrderInIncre
       {"sts curved stick", [](double s) { return segmentToSegmentScaled(s, kStickSlip); },
        ContactState::Stick},
       {"sts curved slide", [](double s) { return segmentToSegmentScaled(s, kSlideSlip); },
+       ContactState::Slip},
+      {"nts smooth stick", [](double s) { return nodeToSegmentSmoothScaled(s, kStickSlip); },
+       ContactState::Stick},
+      {"nts smooth slide", [](double s) { return nodeToSegmentSmoothScaled(s, kSlideSlip); },
+       ContactState::Slip},
+      {"sts smooth stick", [](double s) { return segmentToSegmentSmoothScaled(s, kStickSlip); },
+       ContactState::Stick},
+      {"sts smooth slide", [](double s) { return segmentToSegmentSmoothScaled(s, kSlideSlip); },
        ContactState::Slip},
       {"stas parallel plane stick",
        [](double s) { return analyticalSurfaceScaled(parallelPlane, s, kStickSlip); },

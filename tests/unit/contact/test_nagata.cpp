@@ -1,0 +1,311 @@
+// The smoothed master geometry (Nagata patches, contact/nagata.hpp; issue 16 part 2) against
+// analytic surfaces and finite differences: a flat patch stays flat, the patch over exact
+// nodal normals reproduces a cylinder's and a sphere's normal to O(h^2) or better, neighbouring
+// patches share their edges (C0) and the nodal normal at their corners, the derivatives that
+// feed the covariant frame are those of rho, and the master's nodal normals are exact on a
+// uniform mesh of a cylinder.
+#include <gtest/gtest.h>
+
+#include <Eigen/Core>
+#include <cmath>
+#include <functional>
+
+#include "contact/geometry.hpp"
+#include "contact/master_surface.hpp"
+#include "contact/projection.hpp"
+
+namespace cc::contact {
+namespace {
+
+using Eigen::Vector2d;
+using Eigen::Vector3d;
+
+// A surface given by its point and unit normal as functions of two parameters (u, v).
+struct AnalyticSurface {
+  std::function<Vector3d(double, double)> point;
+  std::function<Vector3d(double, double)> normal;
+};
+
+// Cylinder of radius R about the y axis, outward normal: u is the angle, v the axial position.
+AnalyticSurface cylinder(double R) {
+  return {[R](double u, double v) { return Vector3d(R * std::sin(u), v, -R * std::cos(u)); },
+          [](double u, double) { return Vector3d(std::sin(u), 0, -std::cos(u)); }};
+}
+
+// Sphere of radius R about the origin, outward normal: u, v spherical angles around -z.
+AnalyticSurface sphere(double R) {
+  auto n = [](double u, double v) {
+    return Vector3d(std::sin(u) * std::cos(v), std::sin(v), -std::cos(u) * std::cos(v));
+  };
+  return {[R, n](double u, double v) { return Vector3d(R * n(u, v)); }, n};
+}
+
+// A Quad4 segment with corners at parameters (u0 -+ h/2, v0 -+ h/2), counter-clockwise seen
+// from the outward normal's side, and its exact nodal normals.
+struct Patch {
+  NodeMatrix<double> nodes{3, 4};
+  NodalNormals normals;
+};
+
+Patch patchOn(const AnalyticSurface& s, double u0, double v0, double h) {
+  // Order chosen so that rho_1 x rho_2 points along the outward normal.
+  const double du[4] = {-1, 1, 1, -1}, dv[4] = {-1, -1, 1, 1};
+  Patch p;
+  for (int k = 0; k < 4; ++k) {
+    const double u = u0 + 0.5 * h * du[k], v = v0 - 0.5 * h * dv[k];
+    p.nodes.col(k) = s.point(u, v);
+    p.normals[k] = s.normal(u, v);
+  }
+  return p;
+}
+
+// Largest angle between the patch normal and the surface normal at the patch points' closest
+// points, and largest distance of the patch points from the surface, over a grid of xi.
+struct PatchError {
+  double normal = 0;
+  double position = 0;
+};
+
+PatchError patchError(const Patch& p, const std::function<double(const Vector3d&)>& distance,
+                      const std::function<Vector3d(const Vector3d&)>& exactNormal, bool smooth) {
+  PatchError e;
+  for (double a = -1; a <= 1.0001; a += 0.25) {
+    for (double b = -1; b <= 1.0001; b += 0.25) {
+      const SurfaceFrame<double> f = surfaceFrame<double>(shape::SurfaceType::Quad4, p.nodes, a, b,
+                                                          smooth ? &p.normals : nullptr);
+      const Vector3d n = exactNormal(f.rho);
+      e.normal = std::max(e.normal, std::atan2(f.normal.cross(n).norm(), f.normal.dot(n)));
+      e.position = std::max(e.position, std::abs(distance(f.rho)));
+    }
+  }
+  return e;
+}
+
+// Errors at h and h/2 on a cylinder (R = 1) and a sphere (R = 1).
+std::array<PatchError, 2> cylinderErrors(bool smooth) {
+  std::array<PatchError, 2> errors;
+  const double hs[2] = {0.2, 0.1};
+  for (int k = 0; k < 2; ++k) {
+    const Patch p = patchOn(cylinder(1), 0.3, 0.1, hs[k]);
+    errors[k] = patchError(
+        p, [](const Vector3d& x) { return std::hypot(x.x(), x.z()) - 1; },
+        [](const Vector3d& x) { return Vector3d(x.x(), 0, x.z()).normalized(); }, smooth);
+  }
+  return errors;
+}
+
+std::array<PatchError, 2> sphereErrors(bool smooth) {
+  std::array<PatchError, 2> errors;
+  const double hs[2] = {0.2, 0.1};
+  for (int k = 0; k < 2; ++k) {
+    const Patch p = patchOn(sphere(1), 0.3, 0.2, hs[k]);
+    errors[k] = patchError(
+        p, [](const Vector3d& x) { return x.norm() - 1; },
+        [](const Vector3d& x) { return x.normalized(); }, smooth);
+  }
+  return errors;
+}
+
+TEST(NagataPatch, ReproducesCylinderNormalToSecondOrder) {
+  const auto smooth = cylinderErrors(true);
+  const auto faceted = cylinderErrors(false);
+  const double order = std::log2(smooth[0].normal / smooth[1].normal);
+  EXPECT_GT(order, 1.9) << smooth[0].normal << " " << smooth[1].normal;
+  // The faceted segment's normal is off by half the segment's angle (first order).
+  EXPECT_NEAR(faceted[1].normal, 0.05, 0.005);
+  EXPECT_LT(smooth[1].normal, 0.02 * faceted[1].normal);
+  // Position: third order or better (the faceted chord: second order, sagitta h^2 / 8).
+  EXPECT_GT(std::log2(smooth[0].position / smooth[1].position), 2.9);
+  EXPECT_LT(smooth[1].position, 0.05 * faceted[1].position);
+}
+
+TEST(NagataPatch, ReproducesSphereNormalToSecondOrder) {
+  const auto smooth = sphereErrors(true);
+  const auto faceted = sphereErrors(false);
+  const double order = std::log2(smooth[0].normal / smooth[1].normal);
+  EXPECT_GT(order, 1.9) << smooth[0].normal << " " << smooth[1].normal;
+  EXPECT_LT(smooth[1].normal, 0.05 * faceted[1].normal);
+  EXPECT_GT(std::log2(smooth[0].position / smooth[1].position), 2.9);
+}
+
+TEST(NagataPatch, FlatPatchStaysFlat) {
+  Patch p;
+  p.nodes << -1.0, 1.1, 0.9, -1.2,  //
+      -1.0, -0.9, 1.1, 0.8,         //
+      0, 0, 0, 0;
+  // Rotate the plane out of z = 0 so that no component is trivially zero.
+  const Eigen::Matrix3d rotation =
+      (Eigen::AngleAxisd(0.4, Vector3d::UnitX()) * Eigen::AngleAxisd(-0.7, Vector3d::UnitY()))
+          .toRotationMatrix();
+  p.nodes = rotation * p.nodes;
+  for (Vector3d& n : p.normals) n = rotation * Vector3d::UnitZ();
+  for (double a : {-1.0, -0.3, 0.6}) {
+    for (double b : {-0.8, 0.1, 1.0}) {
+      const SurfaceFrame<double> s =
+          surfaceFrame<double>(shape::SurfaceType::Quad4, p.nodes, a, b, &p.normals);
+      const SurfaceFrame<double> f = surfaceFrame<double>(shape::SurfaceType::Quad4, p.nodes, a, b);
+      EXPECT_LT((s.rho - f.rho).norm(), 1e-15);
+      EXPECT_LT(s.curvature.norm(), 1e-15);
+      EXPECT_LT((s.normal - rotation * Vector3d::UnitZ()).norm(), 1e-15);
+    }
+  }
+}
+
+// Largest angle between the two neighbours' normals along their shared edge, and the largest
+// distance between their edge points.
+std::array<double, 2> edgeMismatch(const Patch& left, const Patch& right, bool smooth) {
+  std::array<double, 2> mismatch{0, 0};
+  for (double t = -1; t <= 1.0001; t += 0.05) {
+    const auto l = surfaceFrame<double>(shape::SurfaceType::Quad4, left.nodes, 1.0, t,
+                                        smooth ? &left.normals : nullptr);
+    const auto r = surfaceFrame<double>(shape::SurfaceType::Quad4, right.nodes, -1.0, t,
+                                        smooth ? &right.normals : nullptr);
+    mismatch[0] = std::max(mismatch[0], std::acos(std::min(1.0, l.normal.dot(r.normal))));
+    mismatch[1] = std::max(mismatch[1], (l.rho - r.rho).norm());
+  }
+  return mismatch;
+}
+
+// Two segments of a sphere sharing the edge 1-2 of the first (= edge 3-0 of the second, run the
+// other way): the same curve from both sides (C0), and at every corner the patch normal is the
+// nodal normal, so the normal is continuous at the nodes. Between the nodes Nagata's patches
+// are not exactly C1: the normals of the two sides differ along the edge, but by O(h^2), against
+// the faceted segments' kink of O(h) (the angle between their planes).
+TEST(NagataPatch, NeighboursShareEdgeAndCornerNormals) {
+  std::array<std::array<double, 2>, 2> smooth, faceted;
+  const double hs[2] = {0.4, 0.2};
+  for (int k = 0; k < 2; ++k) {
+    const double h = hs[k];
+    const Patch left = patchOn(sphere(1), 0.3, 0.2, h);
+    const Patch right = patchOn(sphere(1), 0.3 + h, 0.2, h);
+    ASSERT_LT((left.nodes.col(1) - right.nodes.col(0)).norm(), 1e-14);
+    ASSERT_LT((left.nodes.col(2) - right.nodes.col(3)).norm(), 1e-14);
+    smooth[k] = edgeMismatch(left, right, true);
+    faceted[k] = edgeMismatch(left, right, false);
+    EXPECT_LT(smooth[k][1], 1e-15);
+  }
+  EXPECT_GT(std::log2(smooth[0][0] / smooth[1][0]), 1.9) << smooth[0][0] << " " << smooth[1][0];
+  EXPECT_NEAR(std::log2(faceted[0][0] / faceted[1][0]), 1.0, 0.1);
+  EXPECT_LT(smooth[1][0], 0.1 * faceted[1][0]);
+  const Patch left = patchOn(sphere(1), 0.3, 0.2, 0.4);
+  const double corner[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+  for (int k = 0; k < 4; ++k) {
+    const auto f = surfaceFrame<double>(shape::SurfaceType::Quad4, left.nodes, corner[k][0],
+                                        corner[k][1], &left.normals);
+    EXPECT_LT((f.normal - left.normals[k]).norm(), 1e-13) << k;
+  }
+}
+
+// rho_i and rho_ij (which give a_ij, h_ij and the Christoffel symbols) are the derivatives of
+// rho: central differences on a warped segment with unrelated normals.
+TEST(NagataPatch, DerivativesMatchFiniteDifferences) {
+  Patch p;
+  p.nodes << -1.1, 0.9, 1.2, -0.8,  //
+      -0.9, -1.1, 1.0, 0.8,         //
+      0.05, -0.1, 0.12, -0.04;
+  p.normals.normal = {Vector3d(0.1, 0.2, 1).normalized(), Vector3d(-0.2, 0.1, 1).normalized(),
+                      Vector3d(-0.1, -0.3, 1).normalized(), Vector3d(0.25, -0.1, 1).normalized()};
+  p.normals.tangentialScale = {1.0, 0.7, 1.0, 0.4};  // and the limiter's scales
+  const Vector2d xi(0.23, -0.61);
+  const double h = 1e-5;
+  auto rhoAt = [&](const Vector2d& x) {
+    Vector3d rho;
+    std::array<Vector3d, 2> cov;
+    interpolateSegment(shape::SurfaceType::Quad4, p.nodes, &p.normals, x[0], x[1], rho, cov,
+                       nullptr);
+    return rho;
+  };
+  auto covAt = [&](const Vector2d& x, int i) {
+    return surfaceFrame<double>(shape::SurfaceType::Quad4, p.nodes, x[0], x[1], &p.normals)
+        .rhoCov[i];
+  };
+  const SurfaceFrame<double> f =
+      surfaceFrame<double>(shape::SurfaceType::Quad4, p.nodes, xi[0], xi[1], &p.normals);
+  for (int i = 0; i < 2; ++i) {
+    const Vector2d step = h * Vector2d::Unit(i);
+    EXPECT_LT((f.rhoCov[i] - (rhoAt(xi + step) - rhoAt(xi - step)) / (2 * h)).norm(), 1e-9);
+    for (int j = 0; j < 2; ++j) {
+      const Vector3d fd = (covAt(xi + step, j) - covAt(xi - step, j)) / (2 * h);
+      EXPECT_LT((f.second(i, j) - fd).norm(), 1e-8) << i << j;
+    }
+  }
+  // Not bilinear: the patch has curvature where the bilinear segment's h_12 alone would be.
+  const SurfaceFrame<double> b =
+      surfaceFrame<double>(shape::SurfaceType::Quad4, p.nodes, xi[0], xi[1]);
+  EXPECT_GT((f.curvature - b.curvature).norm(), 1e-2);
+}
+
+// Nagata's edge curve x0 + (d - c) t + c t^2 has end tangents orthogonal to the end normals.
+TEST(NagataPatch, EdgeCurveIsTangentToBothNormals) {
+  const Vector3d n0 = Vector3d(0.3, -0.1, 1).normalized(),
+                 n1 = Vector3d(-0.2, 0.15, 1).normalized();
+  const Vector3d d(1.0, 0.2, 0.05);
+  const Vector3d c = nagataEdgeMatrix(n0, n1) * d;
+  EXPECT_LT(std::abs(n0.dot(d - c)), 1e-15);
+  EXPECT_LT(std::abs(n1.dot(d + c)), 1e-15);
+  EXPECT_EQ(nagataEdgeMatrix(n0, n0), Eigen::Matrix3d::Zero());
+}
+
+// A free-edge node whose normal is that of its one adjacent segment, exactly orthogonal to the
+// chord, and the other end's normal tilted by theta: the unlimited coefficient has c ~ -d (the end
+// tangent d + c of length O(theta)), the limited one keeps |c| <= 0.25 |d| + O(theta) |d|.
+TEST(NagataPatch, TangentialScaleKeepsOneSidedEdgeFromFolding) {
+  const double theta = 0.025;
+  const Vector3d d(0.5, 0, 0);
+  const Vector3d n0 = Vector3d::UnitZ();
+  const Vector3d n1(-std::sin(theta), 0, std::cos(theta));
+  const Vector3d unlimited = nagataEdgeMatrix(n0, n1) * d;
+  EXPECT_LT(std::min((d - unlimited).norm(), (d + unlimited).norm()), 2 * theta * d.norm());
+  const double scale = nagataTangentialScale(n0, n1, d);
+  EXPECT_NEAR(scale, 0.25, 0.01);  // asymmetry cos(theta/2) ~ 1 against the cap 1/4
+  const Vector3d limited = nagataEdgeMatrix(n0, n1, scale) * d;
+  EXPECT_LT(limited.norm(), 0.25 * d.norm() + theta * d.norm());
+  EXPECT_GT(std::min((d - limited).norm(), (d + limited).norm()), 0.7 * d.norm());
+}
+
+// The projection onto a smoothed segment lands on the patch (orthogonality of r - rho to the
+// patch's tangents), and the master surface's nodal normals on a uniform mesh of a cylinder are
+// the exact ones.
+TEST(NagataPatch, ProjectionAndNodalNormalsOnMeshedCylinder) {
+  const int n = 8;        // segments around a quarter, 2 along the axis
+  const double h = 0.15;  // angle per segment
+  Eigen::Matrix3Xd x(3, 3 * (n + 1));
+  for (int a = 0; a <= 2; ++a) {
+    for (int i = 0; i <= n; ++i) x.col(a * (n + 1) + i) = cylinder(1).point(i * h - 0.5, 0.2 * a);
+  }
+  FaceSet faces;
+  faces.type = CellType::Quad4;
+  faces.connectivity.resize(2 * n, 4);
+  for (int a = 0; a < 2; ++a) {
+    for (int i = 0; i < n; ++i) {
+      const int base = a * (n + 1) + i, up = base + n + 1;
+      faces.connectivity.row(a * n + i) << base, base + 1, up + 1, up;
+    }
+  }
+  MasterSurface master(faces);
+  master.setSmooth(true);
+  master.updateNormals(x);
+  // Orientation check: the faces' rho_1 x rho_2 must be the outward normal (else flip order).
+  const NodalNormals normals = master.segmentNormals(n + 3);
+  for (int k = 0; k < 4; ++k) {
+    const Vector3d node = x.col(faces.connectivity(n + 3, k));
+    const Vector3d exact = Vector3d(node.x(), 0, node.z()).normalized();
+    // Interior nodes along the angle: the average of two symmetric facets is exact.
+    EXPECT_LT((normals[k] - (exact.dot(normals[k]) > 0 ? exact : Vector3d(-exact))).norm(), 1e-14);
+  }
+  const Vector3d point(0.31, 0.15, -1.2);
+  master.buildSearchGrid(x, 1.0);
+  const SegmentProjection found = master.search(point, x);
+  ASSERT_TRUE(found.found());
+  const NodalNormals segmentNormals = master.segmentNormals(found.segment);
+  const SurfaceFrame<double> f =
+      surfaceFrame<double>(shape::SurfaceType::Quad4, master.segmentNodes(found.segment, x),
+                           found.xi[0], found.xi[1], &segmentNormals);
+  EXPECT_LT(std::abs(f.rhoCov[0].dot(point - f.rho)), 1e-12);
+  EXPECT_LT(std::abs(f.rhoCov[1].dot(point - f.rho)), 1e-12);
+  // The smoothed surface is within O(h^4) of the cylinder: the distance found is 0.2 up to that.
+  EXPECT_NEAR(found.distance, std::hypot(point.x(), point.z()) - 1, 1e-5);
+}
+
+}  // namespace
+}  // namespace cc::contact
