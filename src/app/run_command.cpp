@@ -291,9 +291,8 @@ std::string costLine(const Model& model, const SolverStatistics& work, int itera
       "\"linear_solve_s\": {}, \"bytes_per_iteration\": {{\"force_sums\": {:.6g}, "
       "\"matrix_entries\": {:.6g}, \"solution\": {:.6g}}}}}\n",
       processes, model.dofMap().numFree(), model.elementCount(), timings.assemblies, iterations,
-      wallSeconds, column(0), column(1), column(2),
-      column(3), column(4), group.bytesMoved() * perIteration, total(5) * perIteration,
-      total(6) * perIteration);
+      wallSeconds, column(0), column(1), column(2), column(3), column(4),
+      group.bytesMoved() * perIteration, total(5) * perIteration, total(6) * perIteration);
 }
 
 // Options that inspect one process's whole tangent, which no process has under mpirun.
