@@ -118,7 +118,8 @@ KeywordDecl fixKeyword() {
               "The first word is always the SET: `fix all uz` fixes uz of every node (plane "
               "strain), `fix all all` clamps every node, `fix SET all` all components of SET. "
               "`fix all` alone is an error (no component). A physical group may not be named "
-              "`all`.",
+              "`all`. Fixing a dof twice (sets sharing an edge) is accepted; for a fixed dof "
+              "that is also prescribed see `prescribe`.",
           .handler = handleFix};
 }
 
@@ -132,7 +133,10 @@ KeywordDecl prescribeKeyword() {
               "A FUNCTION is a quoted muParser expression in t, x, y, z (x, y, z: the "
               "node's reference position), a plain number, or `table (t,v) (t,v) ...`: "
               "piecewise linear with strictly increasing t, constant beyond its ends. "
-              "Components not named stay free.",
+              "Components not named stay free. A dof may carry two conditions (overlapping "
+              "sets, or `fix` and `prescribe`) only if both give the same value at t = 0 and "
+              "at every step end and step midpoint of the solve block (a fixed dof: 0); "
+              "otherwise the deck is refused naming both lines.",
           .handler = handlePrescribe};
 }
 

@@ -1,13 +1,16 @@
 // Boundary conditions of whole decks (issue 15): the built-in node set `all` (plane strain with
 // one line, `fix all uz`) checked against the closed-form St. Venant-Kirchhoff plane-strain
-// stretch.
+// stretch, and the rule for two conditions on one dof (the same value at every step time:
+// accepted, the run unchanged bit for bit; different: refused naming both deck lines).
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "common/errors.hpp"
 #include "deck_runner.hpp"
+#include "model/boundary_conditions.hpp"
 
 namespace cc::test {
 namespace {
@@ -86,6 +89,87 @@ TEST(ModelAllSet, FixAllUzGivesThePlaneStrainStretch) {
   // and sigma_zz = nu sigma_xx = 0.3297 at eps = 0.01: equal to O(eps) (measured 1.5 %, 0.5 %).
   EXPECT_NEAR(exact.forceX / (100 / (1 - 0.3 * 0.3) * 0.01), 1.0, 2 * (stretch - 1));
   EXPECT_NEAR(exact.forceZ / (0.3 * 100 / (1 - 0.3 * 0.3) * 0.01), 1.0, 2 * (stretch - 1));
+}
+
+// The same supports written twice in ways that give the same value at every time: fix + fix
+// (all and zmin), fix + `prescribe ... 0` and a zero table, and the stretch prescribed again as
+// the same motion in another form (commuted, and as a function of x that equals it on xmax).
+// Refused before (fix + prescribe); now the run is the single-condition run, bit for bit.
+TEST(ModelDoubleConditions, ConditionsGivingTheSameValuesAreAccepted) {
+  const double stretch = 1.01;
+  const std::string plain = "fix all uz\nfix xmin ux\nfix ymin uy\n";
+  const std::string doubled =
+      plain +
+      "fix zmin uz\nprescribe xmin ux 0\nprescribe zmax uz table (0,0) "
+      "(1,0)\nprescribe xmax ux \"t*0.01\"\nprescribe xmax ux \"0.01*t*x\"\n";
+  const DeckRun single = runDeckText(stretchDeck(plain, stretch), virtualPath("single.deck"));
+  const DeckRun twice = runDeckText(stretchDeck(doubled, stretch), virtualPath("doubled.deck"));
+  ASSERT_EQ(twice.steps.size(), 2u);
+  EXPECT_EQ(twice.steps.back().displacement, single.steps.back().displacement);
+  EXPECT_EQ(twice.steps.back().setReaction("xmin"), single.steps.back().setReaction("xmin"));
+  EXPECT_NEAR(twice.steps.back().setReaction("xmin").x(),
+              -planeStrainStretch(100, 0.3, stretch).forceX, kNewtonTolerance * 100);
+}
+
+std::string refusal(const std::string& supports, const std::string& name) {
+  try {
+    runDeckText(stretchDeck(supports, 1.01), virtualPath(name));
+  } catch (const InputError& error) {
+    return error.what();
+  }
+  ADD_FAILURE() << "deck ran without error:\n" << stretchDeck(supports, 1.01);
+  return "";
+}
+
+// A fixed dof prescribed to move: refused at the prescribe line, naming the fix line, the node,
+// the time and both values. (Line 4 of the deck: fix all ux; line 7: the stretch of xmax.)
+TEST(ModelDoubleConditions, AFixedDofPrescribedToMoveIsRefusedNamingBothLines) {
+  const std::string message = refusal("fix all ux\nfix ymin uy\nfix zmin uz\n", "fixed.deck");
+  const std::string deck = virtualPath("fixed.deck");
+  EXPECT_NE(message.find(deck + ":7:1: error: prescribe 'xmax': ux of gmsh node "),
+            std::string::npos)
+      << message;
+  EXPECT_NE(message.find("at (1, 0, 0) is also fixed by the line at " + deck +
+                         ":4:1, which gives 0 at t = 0.25 where this line gives 0.0025"),
+            std::string::npos)
+      << message;
+}
+
+// Two motions that agree at every step end (t = 0, 0.5, 1) but not in between: a cut-back would
+// evaluate them at t = 0.25, where they differ by 1e-3, so they are refused there.
+TEST(ModelDoubleConditions, MotionsDifferingOnlyBetweenStepEndsAreRefused) {
+  const std::string message = refusal(
+      "fix xmin ux\nfix ymin uy\nfix zmin uz\n"
+      "prescribe xmax ux \"0.01*t + 0.001*sin(2*pi*t)\"\n",
+      "between.deck");
+  EXPECT_NE(
+      message.find(virtualPath("between.deck") + ":8:1: error: prescribe 'xmax': ux of gmsh node "),
+      std::string::npos)
+      << message;
+  EXPECT_NE(message.find("is also prescribed by the line at " + virtualPath("between.deck") +
+                         ":7:1, which gives 0.0035 at t = 0.25 where this line gives 0.0025"),
+            std::string::npos)
+      << message;
+}
+
+// The times compared: t = 0, every step end and midpoint, bit for bit as the load stepper
+// computes them (phase start + k dt); a long phase is thinned to evenly spaced steps and its end.
+TEST(ModelDoubleConditions, CheckedTimesAreTheStepEndsAndMidpoints) {
+  PhaseSpec first;
+  first.steps = 2;
+  first.dt = 0.5;
+  PhaseSpec second;
+  second.steps = 3;
+  second.dt = 1;
+  EXPECT_EQ(checkedTimes({first, second}, 100),
+            (std::vector<double>{0, 0.25, 0.5, 0.75, 1, 1.5, 2, 2.5, 3, 3.5, 4}));
+  PhaseSpec long_;
+  long_.steps = 25;
+  long_.dt = 1;
+  // Stride 3 (25 steps, at most 10): ends 3, 6, ..., 24 and the phase end 25.
+  EXPECT_EQ(checkedTimes({long_}, 10),
+            (std::vector<double>{0, 2.5, 3, 5.5, 6, 8.5, 9, 11.5, 12, 14.5, 15, 17.5, 18, 20.5, 21,
+                                 23.5, 24, 24.5, 25}));
 }
 
 }  // namespace
