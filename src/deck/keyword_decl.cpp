@@ -102,6 +102,11 @@ ValueDecl stringValue(std::string name, std::string description) {
 ValueDecl identifierValue(std::string name, std::string description) {
   return makeValue(std::move(name), ValueType::Identifier, std::move(description));
 }
+ValueDecl nodeSetValue(std::string name, std::string description) {
+  ValueDecl value = identifierValue(std::move(name), std::move(description));
+  value.nodeSet = true;
+  return value;
+}
 ValueDecl enumValue(std::string name, std::vector<std::string> choices, std::string description) {
   return makeValue(std::move(name), ValueType::Enum, std::move(description), std::move(choices));
 }

@@ -48,6 +48,9 @@ struct ValueDecl {
   std::string defaultText;  // deck syntax of the default; empty = no default
   bool required = false;
   std::string description;  // one line
+  // A node SET positional: its word may be the built-in set `all` (kAllNodesSet) even where
+  // `all` is also a clause of the keyword (`fix all uz`).
+  bool nodeSet = false;
 
   ValueDecl withRange(Range allowed) const;
   ValueDecl withDefault(std::string text) const;
@@ -59,6 +62,8 @@ ValueDecl numberValue(std::string name, std::string description);
 ValueDecl integerValue(std::string name, std::string description);
 ValueDecl stringValue(std::string name, std::string description);
 ValueDecl identifierValue(std::string name, std::string description);
+// The SET of fix, prescribe and load: a physical group's nodes or the built-in set `all`.
+ValueDecl nodeSetValue(std::string name, std::string description);
 ValueDecl enumValue(std::string name, std::vector<std::string> choices, std::string description);
 ValueDecl enumListValue(std::string name, std::vector<std::string> choices,
                         std::string description);

@@ -18,6 +18,11 @@ using Block = KeywordDecl::Block;
 // fem/quadrature.hpp provides (kMaxGaussPoints; a deck unit test keeps the two equal).
 constexpr double kMaxContactGaussPoints = 6;
 
+// The SET of fix, prescribe and load (kAllNodesSet: `all` is read as the set there, also in
+// `fix all uz`, where it is the first word and the component word `all` cannot stand).
+constexpr const char* kNodeSetDescription =
+    "gmsh physical group (its nodes), or `all`: every node of the mesh";
+
 std::vector<ClauseDecl> componentClauses(const std::vector<std::string>& components,
                                          Argument argument, const std::string& what) {
   std::vector<ClauseDecl> clauses;
@@ -106,23 +111,32 @@ KeywordDecl fixKeyword() {
   clauses.push_back({"all", Argument::None, "fix all three displacements"});
   return {.name = "fix",
           .summary = "Zero displacement components on a node set.",
-          .positionals = {identifierValue("SET", "gmsh physical group (its nodes)")},
+          .positionals = {nodeSetValue("SET", kNodeSetDescription)},
           .clauses = clauses,
           .itemName = "SET",
+          .notes =
+              "The first word is always the SET: `fix all uz` fixes uz of every node (plane "
+              "strain), `fix all all` clamps every node, `fix SET all` all components of SET. "
+              "`fix all` alone is an error (no component). A physical group may not be named "
+              "`all`. Fixing a dof twice (sets sharing an edge) is accepted; for a fixed dof "
+              "that is also prescribed see `prescribe`.",
           .handler = handleFix};
 }
 
 KeywordDecl prescribeKeyword() {
   return {.name = "prescribe",
           .summary = "Prescribed displacement components on a node set, as functions of time.",
-          .positionals = {identifierValue("SET", "gmsh physical group (its nodes)")},
+          .positionals = {nodeSetValue("SET", kNodeSetDescription)},
           .clauses = componentClauses(kDisplacementComponents, Argument::Function, "displacement"),
           .itemName = "SET",
           .notes =
               "A FUNCTION is a quoted muParser expression in t, x, y, z (x, y, z: the "
               "node's reference position), a plain number, or `table (t,v) (t,v) ...`: "
               "piecewise linear with strictly increasing t, constant beyond its ends. "
-              "Components not named stay free.",
+              "Components not named stay free. A dof may carry two conditions (overlapping "
+              "sets, or `fix` and `prescribe`) only if both give the same value at t = 0 and "
+              "at every step end and step midpoint of the solve block (a fixed dof: 0); "
+              "otherwise the deck is refused naming both lines.",
           .handler = handlePrescribe};
 }
 
@@ -134,7 +148,7 @@ KeywordDecl loadKeyword() {
        "the FUNCTION values are the set's total force, split equally over its nodes"});
   return {.name = "load",
           .summary = "Nodal forces on a node set, as functions of time (and position).",
-          .positionals = {identifierValue("SET", "gmsh physical group (its nodes)")},
+          .positionals = {nodeSetValue("SET", kNodeSetDescription)},
           .clauses = clauses,
           .itemName = "SET",
           .notes = "Without `total` every node of the set receives the full value.",

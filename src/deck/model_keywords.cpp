@@ -148,6 +148,15 @@ void handleFix(const ParsedLine& line, DeckState& state) {
     fix.components[i] = all || line.findClause(kDisplacementComponents[i]) != nullptr;
   }
   if (line.clauses().empty()) {
+    if (fix.set == kAllNodesSet) {
+      // `fix all` reads as the built-in set with no component; the user meant either every
+      // component of some set or some component of every node.
+      line.fail(line.end(),
+                "give the fixed components: 'fix all' names the built-in set of "
+                "every node but no component; write 'fix all ux' (or uy, uz) to fix "
+                "a component of every node, 'fix all all' to clamp every node, or "
+                "'fix SET all' to clamp the nodes of one set");
+    }
     line.fail(line.end(), "give the fixed components: ux, uy, uz or all");
   }
   fix.where = line.where();

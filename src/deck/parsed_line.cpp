@@ -205,7 +205,11 @@ void LineReader::readParameter() {
 void LineReader::readPositional() {
   const KeywordDecl& keyword = out_.keyword();
   const ValueDecl& decl = keyword.positionals[out_.positionals_.size()];
-  if (peek().isWord() && decl.type == ValueType::Identifier) {
+  // A clause word where the positional should be means the positional was left out
+  // (`fix uz`), except the built-in node set `all`, which is also fix's component word: the
+  // first word is the SET (`fix all uz`), and `fix all` alone is left to the handler to explain.
+  const bool builtInSet = decl.nodeSet && peek().isWord() && peek().text == kAllNodesSet;
+  if (peek().isWord() && decl.type == ValueType::Identifier && !builtInSet) {
     const NameMatch clause = matchName(peek().text, keyword.clauseNames());
     if (clause.found() && equalsIgnoreCase(peek().text, keyword.clauses[clause.index].name)) {
       fail(peek().where,

@@ -17,6 +17,7 @@
 #include <filesystem>
 #include <fstream>
 #include <mutex>
+#include <numeric>
 #include <unordered_map>
 
 #include "common/errors.hpp"
@@ -339,6 +340,14 @@ void checkGroupNames(const std::vector<PhysicalGroup>& groups, const SourceLocat
                                    "physical group, e.g. Physical {}(\"name\") = {{...}}",
                                    groupKind(group.dim), group.tag, geoPhysicalKeyword(group.dim)));
     }
+    if (group.name == kAllNodesSet) {
+      // `all` names the built-in set of every node in the deck (`fix all uz`); a group of that
+      // name would be silently shadowed by it, or shadow it.
+      throw InputError(where, fmt::format("the physical {} with tag {} is named '{}', the name "
+                                          "of the built-in set of every node (as in 'fix {} "
+                                          "uz'); rename the group",
+                                          groupKind(group.dim), group.tag, group.name, group.name));
+    }
     const auto [previous, inserted] = byName.emplace(group.name, &group);
     if (!inserted) {
       throw InputError(
@@ -494,6 +503,12 @@ Mesh buildMesh(const GmshModel& model, const SourceLocation& where) {
     if (group.dim == 2) mesh.faceSets.emplace(group.name, makeFaceSet(group, numbering, where));
     mesh.nodeSets.emplace(group.name, makeNodeSet(group, numbering));
   }
+  // The built-in set `all` (checkGroupNames keeps the name free): every node of the groups.
+  NodeSet all;
+  all.name = kAllNodesSet;
+  all.nodes.resize(numbering.gmshTags.size());
+  std::iota(all.nodes.begin(), all.nodes.end(), 0);
+  mesh.nodeSets.emplace(all.name, std::move(all));
   if (mesh.blocks.empty()) {
     throw InputError(where,
                      "the mesh has no physical volume; define the element blocks with "

@@ -52,7 +52,7 @@ struct Mesh {
   Eigen::Matrix3Xd coordinates;  // reference coordinates, one column per node
   std::vector<ElementBlock> blocks;
   std::map<std::string, FaceSet> faceSets;
-  std::map<std::string, NodeSet> nodeSets;  // every physical group also yields a node set
+  std::map<std::string, NodeSet> nodeSets;  // every physical group's nodes, and `all`
   std::vector<std::size_t> gmshNodeTags;    // per node, for messages; empty if not from gmsh
 
   int numNodes() const { return static_cast<int>(coordinates.cols()); }

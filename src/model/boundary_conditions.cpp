@@ -1,7 +1,13 @@
-// Boundary conditions: resolution of fix/prescribe/load to dofs and their evaluation in time.
+// Boundary conditions: resolution of fix/prescribe/load to dofs, the rule for two conditions on
+// one dof, and their evaluation in time.
 #include "model/boundary_conditions.hpp"
 
 #include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <set>
 
 #include "common/errors.hpp"
 #include "common/name_matching.hpp"
@@ -10,7 +16,42 @@ namespace cc {
 
 namespace {
 constexpr const char* kComponentNames[3] = {"ux", "uy", "uz"};
+// Two conditions agree when they differ by round-off only: expressions equal in exact arithmetic
+// ("t/10" and "0.1*t") differ by a few units in the last place of the largest value they take.
+constexpr double kAgreement = 1e3 * std::numeric_limits<double>::epsilon();
+// Steps per phase at which time-only conditions are compared (one evaluation per time), and the
+// evaluations spent on conditions that depend on the position (one per node and time, ~0.1 s of
+// muParser); those see fewer steps per phase on large overlaps, never fewer than the minimum.
+constexpr int kMaxCheckedStepsPerPhase = 10000;
+constexpr int kMinCheckedStepsPerPhase = 16;
+constexpr double kPositionEvaluationBudget = 2e6;
+
+const char* conditionKeyword(int function) {
+  return function < 0 ? "fix" : "prescribe";
+}
 }  // namespace
+
+std::vector<double> checkedTimes(const std::vector<PhaseSpec>& phases, int maxStepsPerPhase) {
+  std::vector<double> times{0.0};
+  double phaseStart = 0;
+  for (const PhaseSpec& phase : phases) {
+    // Step k of a phase ends at phaseStart + k * dt, as LoadStepper computes it (bit for bit).
+    const long long steps = phase.steps;
+    if (steps <= 0) continue;
+    const long long stride =
+        std::max<long long>(1, (steps + maxStepsPerPhase - 1) / std::max(1, maxStepsPerPhase));
+    for (long long k = stride;; k += stride) {
+      const double end = static_cast<double>(std::min(k, steps));
+      times.push_back(phaseStart + end * phase.dt);
+      times.push_back(phaseStart + (end - 0.5) * phase.dt);
+      if (k >= steps) break;
+    }
+    phaseStart = phaseStart + phase.steps * phase.dt;
+  }
+  std::sort(times.begin(), times.end());
+  times.erase(std::unique(times.begin(), times.end()), times.end());
+  return times;
+}
 
 const NodeSet& requireNodeSet(const Mesh& mesh, const std::string& name,
                               const SourceLocation& where, const char* purpose) {
@@ -27,16 +68,80 @@ int BoundaryConditions::addFunction(const FunctionSpec& spec) {
   return static_cast<int>(functions_.size()) - 1;
 }
 
-void BoundaryConditions::constrain(int dof, Condition condition, const std::string& set,
-                                   const char* component) {
+void BoundaryConditions::constrain(int dof, Condition condition, const std::string& set) {
   auto [it, inserted] = conditions_.try_emplace(dof, condition);
   if (inserted) return;
   const bool bothFixed = it->second.function < 0 && condition.function < 0;
   if (bothFixed) return;  // fixing a dof twice (sets sharing an edge) is harmless
-  throw InputError(condition.where,
-                   fmt::format("{} of a node in set '{}' already has a condition from {}; a dof "
-                               "can be fixed or prescribed by one line only",
-                               component, set, it->second.where.str()));
+  // Judged once every condition is known (checkOverlaps); the first condition stays in force.
+  overlaps_.push_back({dof, it->second, condition, set});
+}
+
+double BoundaryConditions::conditionValue(const Condition& condition, double t,
+                                          const Eigen::Vector3d& x) const {
+  return condition.function < 0 ? 0.0 : (*functions_[condition.function])(t, x);
+}
+
+// One rule for every pair of conditions on a dof (fix + fix, fix + prescribe 0, the same
+// prescribed motion from overlapping sets): the same value at every time the run can ask for,
+// else refused. Before, fix + fix was accepted and fix + `prescribe ... 0` refused.
+void BoundaryConditions::checkOverlaps(const ProblemSpec& spec, const Mesh& mesh) const {
+  if (overlaps_.empty()) return;
+  const auto dependsOnPosition = [&](const Condition& condition) {
+    return condition.function >= 0 && functions_[condition.function]->dependsOnPosition();
+  };
+  std::size_t positional = 0;
+  for (const Overlap& overlap : overlaps_) {
+    if (dependsOnPosition(overlap.first) || dependsOnPosition(overlap.second)) ++positional;
+  }
+  const std::vector<double> timeOnlyTimes = checkedTimes(spec.phases, kMaxCheckedStepsPerPhase);
+  std::vector<double> positionTimes;
+  if (positional > 0) {
+    const double phases = static_cast<double>(std::max<std::size_t>(1, spec.phases.size()));
+    // Two conditions, and a step end and a midpoint per checked step.
+    const double steps =
+        kPositionEvaluationBudget / (4.0 * static_cast<double>(positional) * phases);
+    positionTimes = checkedTimes(
+        spec.phases, static_cast<int>(std::clamp(steps, double{kMinCheckedStepsPerPhase},
+                                                 double{kMaxCheckedStepsPerPhase})));
+  }
+  std::set<std::pair<int, int>> comparedPairs;  // time-only pairs give the same at every node
+  std::vector<double> first;
+  std::vector<double> second;
+  for (const Overlap& overlap : overlaps_) {
+    const bool position = dependsOnPosition(overlap.first) || dependsOnPosition(overlap.second);
+    if (!position &&
+        !comparedPairs.insert({overlap.first.function, overlap.second.function}).second) {
+      continue;
+    }
+    const std::vector<double>& times = position ? positionTimes : timeOnlyTimes;
+    const int node = overlap.dof / 3;
+    const Eigen::Vector3d x = mesh.coordinates.col(node);
+    first.resize(times.size());
+    second.resize(times.size());
+    double scale = 0;
+    for (std::size_t i = 0; i < times.size(); ++i) {
+      first[i] = conditionValue(overlap.first, times[i], x);
+      second[i] = conditionValue(overlap.second, times[i], x);
+      scale = std::max({scale, std::abs(first[i]), std::abs(second[i])});
+    }
+    for (std::size_t i = 0; i < times.size(); ++i) {
+      if (std::abs(first[i] - second[i]) <= kAgreement * scale) continue;
+      const std::string nodeName = static_cast<std::size_t>(node) < mesh.gmshNodeTags.size()
+                                       ? fmt::format("gmsh node {}", mesh.gmshNodeTags[node])
+                                       : fmt::format("node {}", node);
+      throw InputError(
+          overlap.second.where,
+          fmt::format("{} '{}': {} of {} at ({}, {}, {}) is also {} by the line at {}, which "
+                      "gives {} at t = {} where this line gives {}; two conditions on one dof "
+                      "must give the same value at t = 0, at every step time and at every step "
+                      "midpoint (a fixed dof: 0)",
+                      conditionKeyword(overlap.second.function), overlap.set,
+                      kComponentNames[overlap.dof % 3], nodeName, x[0], x[1], x[2],
+                      overlap.first.function < 0 ? "fixed" : "prescribed",
+                      overlap.first.where.str(), first[i], times[i], second[i]));
+    }
+  }
 }
 
 void BoundaryConditions::build(const ProblemSpec& spec, const Mesh& mesh) {
@@ -44,8 +149,7 @@ void BoundaryConditions::build(const ProblemSpec& spec, const Mesh& mesh) {
     const NodeSet& set = requireNodeSet(mesh, fix.set, fix.where, "fix");
     for (int c = 0; c < 3; ++c) {
       if (!fix.components[c]) continue;
-      for (int node : set.nodes)
-        constrain(3 * node + c, {-1, fix.where}, fix.set, kComponentNames[c]);
+      for (int node : set.nodes) constrain(3 * node + c, {-1, fix.where}, fix.set);
     }
   }
   for (const PrescribeSpec& prescribe : spec.prescribed) {
@@ -54,10 +158,13 @@ void BoundaryConditions::build(const ProblemSpec& spec, const Mesh& mesh) {
       if (!prescribe.components[c]) continue;
       const int function = addFunction(*prescribe.components[c]);
       for (int node : set.nodes) {
-        constrain(3 * node + c, {function, prescribe.where}, prescribe.set, kComponentNames[c]);
+        constrain(3 * node + c, {function, prescribe.where}, prescribe.set);
       }
     }
   }
+  checkOverlaps(spec, mesh);
+  overlaps_.clear();
+  overlaps_.shrink_to_fit();
   for (const LoadSpec& load : spec.loads) {
     const NodeSet& set = requireNodeSet(mesh, load.set, load.where, "load");
     const double scale = load.total ? 1.0 / static_cast<double>(set.nodes.size()) : 1.0;

@@ -18,7 +18,9 @@ namespace cc {
 class BoundaryConditions {
  public:
   // Resolves the deck's fix, prescribe and load items against the mesh's node sets. Throws
-  // InputError for unknown sets, bad expressions and contradicting conditions on one dof.
+  // InputError for unknown sets, bad expressions and contradicting conditions on one dof: two
+  // conditions on a dof (overlapping sets, fix and prescribe) are accepted only if they give the
+  // same value at every time checkedTimes() lists, else refused naming both deck lines.
   void build(const ProblemSpec& spec, const Mesh& mesh);
 
   // Dofs (3 * node + component) carrying a Dirichlet condition.
@@ -38,13 +40,29 @@ class BoundaryConditions {
     int function = 0;
     double scale = 1;  // 1 / (nodes of the set) for `total` loads
   };
+  // A second condition on a dof that already has one, compared once all are known.
+  struct Overlap {
+    int dof = 0;
+    Condition first;
+    Condition second;
+    std::string set;  // the second condition's set
+  };
   int addFunction(const FunctionSpec& spec);
-  void constrain(int dof, Condition condition, const std::string& set, const char* component);
+  void constrain(int dof, Condition condition, const std::string& set);
+  double conditionValue(const Condition& condition, double t, const Eigen::Vector3d& x) const;
+  void checkOverlaps(const ProblemSpec& spec, const Mesh& mesh) const;
 
   std::vector<std::unique_ptr<ScalarFunction>> functions_;
   std::unordered_map<int, Condition> conditions_;  // by dof
+  std::vector<Overlap> overlaps_;                  // while building
   std::vector<NodalLoad> loads_;
 };
+
+// The times at which two conditions on one dof must agree: t = 0, every step time of the solve
+// block's phases and every step's midpoint (where the first cut-back of a step lands with the
+// default factor 0.5). A phase of more than `maxStepsPerPhase` steps is represented by that many
+// evenly spaced steps and its end. Sorted, without repeats.
+std::vector<double> checkedTimes(const std::vector<PhaseSpec>& phases, int maxStepsPerPhase);
 
 // The node set `name` of the mesh, or InputError at `where` with a suggestion.
 const NodeSet& requireNodeSet(const Mesh& mesh, const std::string& name,

@@ -89,6 +89,11 @@ const FaceSet& requireFaceSet(const Mesh& mesh, const std::string& name,
                                  "be a face (surface) group",
                                  role, name));
   }
+  if (name == kAllNodesSet) {
+    throw InputError(where, fmt::format("contact: {} '{}' is the built-in set of every node; a "
+                                        "contact surface must be a face (surface) group",
+                                        role, name));
+  }
   if (mesh.nodeSets.count(name)) {
     throw InputError(where, fmt::format("contact: {} '{}' is a curve or point group; a contact "
                                         "surface must be a face (surface) group",

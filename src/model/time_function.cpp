@@ -77,6 +77,10 @@ class ExpressionFunction final : public ScalarFunction {
                                      "gives one (write decimals with a point: 2.5e-3, not 2,5e-3)",
                                      spec.expression, parser_.GetNumResults()));
       }
+      // Asked after the checks above: GetUsedVar re-parses, and the next Eval parses again.
+      for (const auto& [name, variable] : parser_.GetUsedVar()) {
+        if (name == "x" || name == "y" || name == "z") dependsOnPosition_ = true;
+      }
     } catch (const mu::Parser::exception_type& error) {
       throw InputError(where_, fmt::format("cannot parse expression \"{}\": {}{}", spec.expression,
                                            parserMessage(error, spec.expression),
@@ -106,8 +110,11 @@ class ExpressionFunction final : public ScalarFunction {
     return value;
   }
 
+  bool dependsOnPosition() const override { return dependsOnPosition_; }
+
  private:
   SourceLocation where_;
+  bool dependsOnPosition_ = false;
   mutable mu::Parser parser_;
   mutable double t_ = 0;
   mutable double position_[3] = {0, 0, 0};
@@ -140,6 +147,8 @@ class TableFunction final : public ScalarFunction {
     const double fraction = (t - lower->first) / (upper->first - lower->first);
     return lower->second + fraction * (upper->second - lower->second);
   }
+
+  bool dependsOnPosition() const override { return false; }
 
  private:
   std::vector<std::pair<double, double>> points_;

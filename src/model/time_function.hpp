@@ -16,6 +16,9 @@ class ScalarFunction {
   // Not thread-safe (muParser keeps state); evaluate from one thread.
   virtual double operator()(double t, const Eigen::Vector3d& position) const = 0;
   double operator()(double t) const { return (*this)(t, Eigen::Vector3d::Zero()); }
+  // False if the value is the same at every position (a table, an expression without x, y, z):
+  // a comparison of two conditions then needs one evaluation per time, not one per node.
+  virtual bool dependsOnPosition() const = 0;
 };
 
 // Which variables an expression may use: prescribed displacements and loads see the reference

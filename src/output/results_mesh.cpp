@@ -3,6 +3,7 @@
 #include "output/results_mesh.hpp"
 
 #include "output/results_layout.hpp"
+#include "spec/problem_spec.hpp"
 
 namespace cc {
 
@@ -60,6 +61,9 @@ XdmfBlock writeBlock(h5::FileRef file, hid_t blocksGroup, const ElementBlock& bl
 void writeSets(h5::FileRef file, hid_t meshGroup, const Mesh& mesh) {
   h5::Group nodeSets = h5::createGroup(file, meshGroup, "node_sets");
   for (const auto& [name, set] : mesh.nodeSets) {
+    // The built-in set `all` is every node 0..N-1: it says nothing the coordinates do not, and
+    // would add one integer per node to every results file.
+    if (name == kAllNodesSet) continue;
     h5::Group group = h5::createGroup(file, nodeSets.get(), layout::linkName(name));
     h5::writeAttribute(file, group.get(), "name", name);
     h5::writeInts(file, group.get(), "nodes", set.nodes.data(), set.nodes.size(), 0);

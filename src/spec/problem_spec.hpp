@@ -52,6 +52,11 @@ struct ElementBlockSpec {
   SourceLocation where;
 };
 
+// The built-in node set of every node of the mesh (`fix all uz` for plane strain). It is the
+// first word after `fix`, `prescribe` and `load`, so it never clashes with the component word
+// of `fix SET all`; a physical group may therefore not be named `all` (refused by the mesh).
+inline constexpr const char* kAllNodesSet = "all";
+
 struct FixSpec {
   std::string set;
   std::array<bool, 3> components{false, false, false};  // ux, uy, uz

@@ -77,7 +77,8 @@ std::vector<ErrorCase> parameterCases() {
        "Venant-Kirchhoff, compressible neo-Hooke, or decoupled neo-Hooke (Abaqus/CalculiX "
        "form))"},
       {"MissingSetBeforeClause", appended("fix ux"), 8, 5,
-       "fix: missing SET before 'ux' (gmsh physical group (its nodes))"},
+       "fix: missing SET before 'ux' (gmsh physical group (its nodes), or `all`: every node of the "
+       "mesh)"},
       {"UnexpectedWord", appended("fix top ux sideways"), 8, 12,
        "fix 'top': unexpected word 'sideways'; expected ux, uy, uz or all"},
       {"ClauseGivenTwice", appended("fix top ux ux"), 8, 12,

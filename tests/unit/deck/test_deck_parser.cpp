@@ -416,5 +416,32 @@ TEST(DeckParser, BlocksMayComeInAnyOrder) {
   EXPECT_EQ(spec.rigidSurfaces.at(0).normal, (Vec3{0, 0, -1}));
 }
 
+// The first word after fix, prescribe and load is the SET, so `all` there is the built-in set of
+// every node, also where `all` is fix's component word (`fix all all`: every component of every
+// node). A component word in the SET's place still means the SET was left out.
+TEST(DeckParser, TheFirstWordAllIsTheBuiltInSetOfEveryNode) {
+  const ProblemSpec spec =
+      parseDeckText(kMinimalDeck +
+                        "fix all uz\nfix all all\nfix top all\nprescribe all ux \"0.1*t\"\n"
+                        "load all fy 2\n",
+                    virtualDeckPath());
+  ASSERT_EQ(spec.fixes.size(), 4u);
+  EXPECT_EQ(spec.fixes[1].set, "all");
+  EXPECT_EQ(spec.fixes[1].components, (std::array<bool, 3>{false, false, true}));
+  EXPECT_EQ(spec.fixes[2].set, "all");
+  EXPECT_EQ(spec.fixes[2].components, (std::array<bool, 3>{true, true, true}));
+  EXPECT_EQ(spec.fixes[3].set, "top");
+  EXPECT_EQ(spec.fixes[3].components, (std::array<bool, 3>{true, true, true}));
+  EXPECT_EQ(spec.prescribed.at(0).set, "all");
+  EXPECT_EQ(spec.loads.at(0).set, "all");
+  EXPECT_NE(std::string(parseError(kMinimalDeck + "fix all\n").what())
+                .find(":8:8: error: fix 'all': give the fixed components: 'fix all' names the "
+                      "built-in set of every node but no component"),
+            std::string::npos);
+  EXPECT_NE(std::string(parseError(kMinimalDeck + "fix uz\n").what())
+                .find(":8:5: error: fix: missing SET before 'uz'"),
+            std::string::npos);
+}
+
 }  // namespace
 }  // namespace cc::test
