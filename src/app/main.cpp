@@ -231,6 +231,9 @@ int main(int argc, char** argv) {
       run.commandLine = joinArguments(argc, argv);
       return cc::app::runCommand(run);
     }
+    // check, compare and solve-dump work on one process: under mpirun rank 0 does the work and
+    // the others leave at once (otherwise the output came once per process).
+    if (cc::launchedProcesses() > 1 && cc::launchedRank() != 0) return cc::kExitOk;
     if (*solveDumpCommand) return cc::app::solveDumpCommand(solveDump);
     if (*checkCommand) {
       if (checkDeck.empty() && !listKeywords) {

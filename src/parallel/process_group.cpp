@@ -47,6 +47,13 @@ int launchedProcesses() {
   return 1;
 }
 
+int launchedRank() {
+  for (const char* name : {"OMPI_COMM_WORLD_RANK", "PMI_RANK", "SLURM_PROCID"}) {
+    if (std::getenv(name)) return positiveFromEnvironment(name);  // "0" reads as 0
+  }
+  return 0;
+}
+
 ProcessGroup& processGroup() {
   static std::once_flag once;
   static std::unique_ptr<ProcessGroup> group;

@@ -45,6 +45,8 @@ class ProcessGroup {
 // Number of processes the launcher (mpirun, srun) started, read from its environment before MPI
 // is initialized; 1 when not launched by one.
 int launchedProcesses();
+// This process's rank among them, from the same environment (0 when not launched by one).
+int launchedRank();
 
 // The process's group: the MPI one when launchedProcesses() > 1 (loads the PETSc plugin and
 // initializes MPI on first call), else the one-process group.

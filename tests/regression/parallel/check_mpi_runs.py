@@ -9,8 +9,8 @@
   processes, as a scheduler does) after step 8: exit 4 as in a serial run, every reported step
   in the file; continued with --restart on 1 and on 3 processes, every remaining step as the
   uninterrupted serial run (iterations exactly, forces to 1e-8).
---case errors: a deck error on 2 processes exits with the serial exit code and is reported
-  once; a persistent inverted element (input/stress/inverted_element_persistent.deck) exits
+--case errors: `check` on 2 processes prints the serial output once; a deck error on 2
+  processes exits with the serial exit code and is reported once; a persistent inverted element (input/stress/inverted_element_persistent.deck) exits
   with the serial code, keeps the same converged steps and names the element once; SIGKILL of
   one process ends every process (no hang) and leaves every reported step readable.
 
@@ -163,6 +163,12 @@ def restart_case(args):
 
 
 def errors_case(args):
+    good = os.path.join(args.source, "tests/regression/paper/decks/6_1b_short_full.deck")
+    serial, two = run(args, 1, "check", good), run(args, 2, "check", good)
+    check(serial.returncode == 0 and two.returncode == 0 and two.stdout == serial.stdout,
+          f"check on 2 processes printed\n{two.stdout}\nserial\n{serial.stdout}")
+    print("check on 2 processes: the serial output, once")
+
     bad = os.path.join(args.source, "tests/decks/bad/unknown_keyword.deck")
     serial, two = run(args, 1, "run", bad, "-o", "bad1.h5"), run(args, 2, "run", bad, "-o", "bad2.h5")
     check(serial.returncode == EXIT["input"] and two.returncode == serial.returncode,
