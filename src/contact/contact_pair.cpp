@@ -125,6 +125,7 @@ void ContactPair::initializeHistory(const AssemblyState& state) {
 }
 
 LocalStatus ContactPair::prepare(const AssemblyState& state) {
+  ++evaluationPass_;
   if (config_.smoothMaster && (!normalsReady_ || normalsTime_ != state.previousTime)) {
     // Normals from the converged configuration at the step's start, fixed over the step (a
     // cut-back retries from the same one): they keep an item's node list the segment's nodes,
@@ -175,6 +176,7 @@ PointSetup ContactPair::setupFor(const PairPoint& point) const {
 LocalStatus ContactPair::evaluate(std::size_t item, const AssemblyState& state,
                                   Eigen::VectorXd& force, Eigen::MatrixXd* tangent) {
   PairPoint& point = points_[item];
+  point.evaluatedInPass = evaluationPass_;
   if (point.layout.masterCount == 0) {  // no master segment under this point: open
     point.trial = PointTrial{};
     return LocalStatus::success();
@@ -210,8 +212,9 @@ LocalStatus ContactPair::evaluate(std::size_t item, const AssemblyState& state,
 }
 
 bool ContactPair::tangentSymmetric() const {
-  return std::all_of(points_.begin(), points_.end(),
-                     [](const PairPoint& p) { return p.trial.symmetric; });
+  return std::all_of(points_.begin(), points_.end(), [this](const PairPoint& p) {
+    return !evaluatedThisPass(p) || p.trial.symmetric;
+  });
 }
 
 void ContactPair::commitStep() {

@@ -74,7 +74,8 @@ class ContactPair : public Contribution {
   void restoreStep() override;
 
   // Points whose trial state or master segment changed since the last call, and the points in
-  // contact (contact_pair_diagnostics.cpp; Newton logs it per iteration).
+  // contact (contact_pair_diagnostics.cpp; Newton logs it per iteration). Only the points
+  // evaluated since the last prepare() count (all of them in a serial run).
   ContactChanges takeChanges();
 
   // Output of the last evaluated (after commit: converged) state.
@@ -126,6 +127,11 @@ class ContactPair : public Contribution {
   std::vector<int> countedSegment_;
   std::vector<int> moved_;  // scratch of searchSegments
   std::uint64_t topologyVersion_ = 1;
+  // Counts prepare() calls: points evaluated since the last one carry this number.
+  std::uint64_t evaluationPass_ = 0;
+  bool evaluatedThisPass(const PairPoint& point) const {
+    return point.evaluatedInPass == evaluationPass_;
+  }
   // STAS
   RigidSurface surface_;
   SurfaceMotion motion_;

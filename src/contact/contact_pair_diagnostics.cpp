@@ -12,6 +12,7 @@ ContactChanges ContactPair::takeChanges() {
   ContactChanges changes;
   for (std::size_t i = 0; i < points_.size(); ++i) {
     const PairPoint& point = points_[i];
+    if (!evaluatedThisPass(point)) continue;  // another process evaluates it
     const ContactState state = point.trial.valid ? point.trial.state : ContactState::Open;
     const int segment = state != ContactState::Open ? point.segment : -1;
     if (state != countedState_[i]) ++changes.state;

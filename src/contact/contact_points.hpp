@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -64,6 +65,10 @@ struct PairPoint {
   PointLayout layout;
   PointHistory committed;
   PointTrial trial;
+  // The evaluation pass (ContactPair::prepare counts them) that last set `trial`: a run on
+  // several processes evaluates only some points per pass, and the per-pass summaries
+  // (symmetry, state changes) must count only those.
+  std::uint64_t evaluatedInPass = 0;
   // Augmented Lagrangian: lambda_N of the current Uzawa update and of the last commit, and
   // the tangential augmentation added to T^(n) during this step (reset at commit, when
   // T^(n+1) takes it over).

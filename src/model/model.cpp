@@ -42,8 +42,11 @@ void Model::assemble(const AssemblyState& state, Eigen::VectorXd& internalForce,
   }
   const auto [code, text] = group_->agree(failure, message);
   if (code != 0) throw StepFailure(static_cast<FailureKind>(code - 1), text);
+  rememberAssemblyState(state);
   group_->sum(internalForce.data(), static_cast<std::size_t>(internalForce.size()));
   if (tangent) {
+    // Each process saw the symmetry of its own items only.
+    tangent->symmetric = group_->maximum(tangent->symmetric ? 0 : 1) == 0;
     // Each process's pattern holds only its own items: when any of them changed, all take a
     // new version, so that the distributed matrix is rebuilt by all of them together.
     const bool changed = tangent->patternVersion != sharedPatternVersion_;
@@ -59,6 +62,7 @@ void Model::sumOverProcesses(Eigen::VectorXd& values) {
 }
 
 NonlinearProblem::Augmentation Model::augment() {
+  completeContactTrials();
   Augmentation result;
   for (auto& pair : contactPairs_) {
     switch (pair->augment()) {
@@ -75,6 +79,7 @@ NonlinearProblem::Augmentation Model::augment() {
 }
 
 void Model::commitStep() {
+  completeContactTrials();
   for (auto& set : elementSets_) set->commitStep();
   for (auto& pair : contactPairs_) pair->commitStep();
   if (group_) {
@@ -86,6 +91,12 @@ void Model::commitStep() {
 ContactChanges Model::takeContactChanges() {
   ContactChanges changes;
   for (auto& pair : contactPairs_) changes += pair->takeChanges();
+  if (group_) {  // each process counted the points it evaluated
+    double counts[3] = {double(changes.state), double(changes.segment), double(changes.active)};
+    group_->sum(counts, 3);
+    changes = {static_cast<int>(counts[0]), static_cast<int>(counts[1]),
+               static_cast<int>(counts[2])};
+  }
   return changes;
 }
 

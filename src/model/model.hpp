@@ -45,11 +45,14 @@ class Model : public NonlinearProblem {
 
   // A run on several processes (model_distribution.cpp): partitions the nodes (PT-Scotch),
   // gives each element to the process owning most of its nodes and each contact point to the
-  // owner of its first (slave) node. Every process keeps the whole mesh and state; it
-  // evaluates and adds only its elements, and evaluates every contact point (their history
-  // stays whole everywhere) but adds only its own. assemble() then sums the internal force over
-  // the processes and agrees on failures; commitStep() shares the element history. A no-op on
-  // one process. Returns a line describing the partition (empty on one process).
+  // owner of its first (slave) node. Every process keeps the whole mesh and state (the contact
+  // search runs everywhere); in Newton's iterations it evaluates and adds only its own elements
+  // and contact points. assemble() then sums the internal force over the processes and agrees on
+  // failures; once a solve has converged, augment() and commitStep() first evaluate the other
+  // processes' contact points at the converged state (completeContactTrials), so that the
+  // contact history and output stay whole and identical everywhere; commitStep() shares the
+  // element history. A no-op on one process. Returns a line describing the partition (empty on
+  // one process).
   std::string distribute(ProcessGroup& group);
   // Several processes: converged steps in which a contact point's master segment belonged to
   // another process than at the step before, summed over points and steps (diagnostics).
@@ -88,6 +91,9 @@ class Model : public NonlinearProblem {
   friend std::unique_ptr<Model> buildModel(const ProblemSpec& spec);
   void shareElementHistory();
   void countMasterOwnerChanges();
+  bool ownsContactPoint(const contact::ContactPair& pair, std::size_t item) const;
+  void rememberAssemblyState(const AssemblyState& state);
+  void completeContactTrials();
 
   ProblemSpec spec_;
   Mesh mesh_;
@@ -114,6 +120,11 @@ class Model : public NonlinearProblem {
   std::vector<std::vector<int>> masterOwner_;  // per pair and point at the last commit, -1 none
   long masterOwnerChanges_ = 0;
   std::uint64_t sharedPatternVersion_ = 0;  // the pattern version all processes analyzed last
+  // The configuration of the last assembly, and whether the other processes' contact points
+  // have been evaluated at it since (completeContactTrials).
+  AssemblyState lastState_;
+  Eigen::Matrix3Xd lastCurrent_, lastPrevious_;
+  bool contactTrialsComplete_ = true;
 };
 
 // Loads the mesh and builds the model. Throws InputError naming the deck line of whatever does

@@ -73,10 +73,8 @@ std::string Model::distribute(ProcessGroup& group) {
     if (contribution < numSets) {
       return ownsElement_[contribution][item] ? ItemRole::Assemble : ItemRole::Skip;
     }
-    const contact::ContactPair& pair = *contactPairs_[contribution - numSets];
-    const int slave = pair.itemNodes(item)[0];
-    return nodeOwner_[static_cast<std::size_t>(slave)] == group_->rank() ? ItemRole::Assemble
-                                                                         : ItemRole::EvaluateOnly;
+    return ownsContactPoint(*contactPairs_[contribution - numSets], item) ? ItemRole::Assemble
+                                                                          : ItemRole::Skip;
   });
   const auto [fewestNodes, mostNodes] = std::minmax_element(nodesOf.begin(), nodesOf.end());
   const auto [fewestElements, mostElements] =
@@ -102,6 +100,39 @@ void Model::shareElementHistory() {
     }
     group_->sum(history.data(), history.size());
     set.importHistory(history);
+  }
+}
+
+bool Model::ownsContactPoint(const contact::ContactPair& pair, std::size_t item) const {
+  const int slave = pair.itemNodes(item)[0];  // an item's slave nodes come first
+  return nodeOwner_[static_cast<std::size_t>(slave)] == group_->rank();
+}
+
+void Model::rememberAssemblyState(const AssemblyState& state) {
+  lastState_ = state;
+  lastCurrent_ = *state.current;
+  lastPrevious_ = *state.previous;
+  lastState_.current = &lastCurrent_;
+  lastState_.previous = &lastPrevious_;
+  contactTrialsComplete_ = false;
+}
+
+// In Newton's iterations a process evaluates only its own contact points. Once a solve has
+// converged, the history to commit, the Uzawa update and the output need every point's trial
+// state on every process: the others' points are evaluated here, once per converged solve, at
+// the configuration of the last assembly (the converged one: Newton assembles there last).
+// The search ran everywhere at that configuration, so this reproduces the owner's evaluation
+// bit for bit; it cannot fail where the owner's did not.
+void Model::completeContactTrials() {
+  if (!group_ || contactTrialsComplete_) return;
+  contactTrialsComplete_ = true;
+  Eigen::VectorXd force;
+  for (auto& pair : contactPairs_) {
+    for (std::size_t item = 0; item < pair->itemCount(); ++item) {
+      if (ownsContactPoint(*pair, item)) continue;
+      force.setZero(3 * static_cast<Eigen::Index>(pair->itemNodes(item).size()));
+      (void)pair->evaluate(item, lastState_, force, nullptr);
+    }
   }
 }
 
