@@ -3,8 +3,9 @@
 
 --case crossing: decks/block_crossing_partition.deck (a block split by the partition dragged
   along a base, with cut-backs and an inverted element on the way) on 2 processes: the serial
-  run's step times and iteration counts exactly, forces and displacements to 1e-8, and at least
-  one contact point whose master segment moved to another process.
+  run's step times and iteration counts exactly, forces and displacements to 1e-8, the serial
+  run's per-iteration contact counts (--newton-log: in contact, changed state, changed segment),
+  and at least one contact point whose master segment moved to another process.
 --case restart: input/stress/restart_6_1.deck on 2 processes stopped by SIGTERM (sent to the
   processes, as a scheduler does) after step 8: exit 4 as in a serial run, every reported step
   in the file; continued with --restart on 1 and on 3 processes, every remaining step as the
@@ -31,6 +32,8 @@ import numpy as np
 TIMEOUT_S = 240  # one command on a loaded 2-core machine
 TOLERANCE = 1e-8  # serial against distributed: different summation order and solver only
 EXIT = {"ok": 0, "input": 2, "interrupted": 4}  # `covcontact --help`
+CONTACT_LOG = re.compile(r"iteration (\d+) .*contact: (\d+) active, (\d+) changed state, "
+                         r"(\d+) changed segment")
 CONVERGED_STEP = re.compile(r"step (\d+)/\d+\s+t = \S+\s+\d+ iterations")
 
 
@@ -97,9 +100,17 @@ def crossing_case(args):
     deck = os.path.join(args.source, "tests/regression/parallel/decks/block_crossing_partition.deck")
     serial = os.path.join(args.scratch, "serial.h5")
     distributed = os.path.join(args.scratch, "two.h5")
-    run_ok(args, 1, "run", deck, "-o", serial, "-q")
-    result = run_ok(args, 2, "run", deck, "-o", distributed)
+    serial_run = run_ok(args, 1, "run", deck, "-o", serial, "--newton-log")
+    result = run_ok(args, 2, "run", deck, "-o", distributed, "--newton-log")
     count, worst = compare_steps(serial, distributed)
+    # Each process evaluates only its own contact points in the iterations: the per-iteration
+    # counts of points in contact and of state and segment changes are summed over processes
+    # and must be the serial run's, iteration by iteration.
+    serial_log, distributed_log = (CONTACT_LOG.findall(r.stdout) for r in (serial_run, result))
+    check(len(serial_log) > count, f"serial run printed {len(serial_log)} iteration lines")
+    check(distributed_log == serial_log,
+          f"--newton-log contact counts differ from the serial run's:\n{distributed_log[:20]}\n"
+          f"serial:\n{serial_log[:20]}")
     moved = [line for line in result.stdout.splitlines()
              if line.startswith("contact points whose master segment moved")]
     check(len(moved) == 1, f"no line on master segments changing process:\n{result.stdout}")
