@@ -1,9 +1,10 @@
 // `covcontact run`: deck -> model -> load stepping -> results file, with progress, signal
 // handling (SIGINT/SIGTERM stop after the current iteration) and a closing summary. Under
 // `mpirun -np N` every process runs this same flow on the whole model (model/
-// model_distribution.cpp divides the work); rank 0 alone prints and writes the results file,
-// errors are agreed on (ProcessGroup::agree) and reported once, and a process that must stop
-// alone ends the whole run (ProcessGroup::abort) rather than leave the others waiting.
+// model_distribution.cpp divides the work); all of them write the one results file together
+// (parallel HDF5, ResultsWriter's ParallelOutput), rank 0 alone prints, errors are agreed on
+// (ProcessGroup::agree) and reported once, and a process that must stop alone ends the whole run
+// (ProcessGroup::abort) rather than leave the others waiting.
 #include <fmt/format.h>
 #include <omp.h>
 #include <sys/resource.h>
@@ -66,31 +67,30 @@ std::string outOfMemoryMessage(const char* during, const Model* model) {
 // Receives the stepper's records: writes them and reports progress.
 class RunObserver : public StepObserver {
  public:
-  // `writer` is null on the processes that do not write (every rank but 0 under mpirun).
-  RunObserver(Model& model, ResultsWriter* writer, Progress& progress, bool withStress,
-              ProcessGroup& group, verification::ReferenceTracker* references = nullptr)
+  // Under mpirun every process writes its share of the one results file (with the same
+  // records), and rank 0 alone (`reports`) prints progress.
+  RunObserver(Model& model, ResultsWriter& writer, bool reports, Progress& progress,
+              bool withStress, ProcessGroup& group,
+              verification::ReferenceTracker* references = nullptr)
       : model_(model),
         writer_(writer),
+        reports_(reports),
         progress_(progress),
         withStress_(withStress),
         group_(group),
         references_(references) {}
 
-  // The processes that do not write say nothing either: rank 0 reports for all.
   void iteration(const IterationRecord& record) override {
-    if (!writer_) return;
-    writer_->appendIteration(record);
-    progress_.iteration(record);
+    writer_.appendIteration(record);
+    if (reports_) progress_.iteration(record);
   }
   void cutback(const CutbackRecord& record) override {
-    if (!writer_) return;
-    writer_->appendCutback(record);
-    progress_.cutback(record);
+    writer_.appendCutback(record);
+    if (reports_) progress_.cutback(record);
   }
   void note(const std::string& line) override {
-    if (!writer_) return;
     if (line.rfind("linear solver: ", 0) == 0) linearSolver_ = line.substr(15);
-    progress_.note(line);
+    if (reports_) progress_.note(line);
   }
   const std::string& linearSolver() const { return linearSolver_; }
   // The stepper whose next step size the restart data of every written step records.
@@ -99,7 +99,7 @@ class RunObserver : public StepObserver {
   void stepConverged(int step, double time, int iterations, int cutbacks,
                      const Eigen::VectorXd& displacement, const Eigen::VectorXd& internalForce,
                      bool writeOutput) override {
-    if (!writer_) return;  // the state is the same on every process; rank 0 writes it
+    // The state is the same on every process: each computes the same record.
     model_.accountEnergy(time, displacement, internalForce);  // every step: a running sum
     const bool compare = references_ && !references_->empty();
     if (writeOutput || compare) {
@@ -109,12 +109,12 @@ class RunObserver : public StepObserver {
         const RestartRecord restart =
             restartRecordOf(model_, displacement, stepper_->nextStepSize());
         record.restart = &restart;
-        writer_->writeStep(record);
+        writer_.writeStep(record);
         ++writtenSteps_;
       }
       if (compare) references_->observe(record);  // every converged step, written or not
     }
-    progress_.stepConverged(step, time, iterations, cutbacks);
+    if (reports_) progress_.stepConverged(step, time, iterations, cutbacks);
   }
   // Several processes: a signal may reach them at different iterations; all stop at the first
   // poll after any one of them got it.
@@ -123,7 +123,8 @@ class RunObserver : public StepObserver {
 
  private:
   Model& model_;
-  ResultsWriter* writer_;
+  ResultsWriter& writer_;
+  bool reports_;
   Progress& progress_;
   bool withStress_;
   ProcessGroup& group_;
@@ -296,6 +297,14 @@ std::string costLine(const Model& model, const SolverStatistics& work, int itera
 }
 
 // Options that inspect one process's whole tangent, which no process has under mpirun.
+// Rank 0's value on every process: what the processes write into the shared file must be the
+// same everywhere (a wall time measured on each differs).
+double rankZeroValue(ProcessGroup& group, double value) {
+  if (group.rank() != 0) value = 0;
+  group.sum(&value, 1);
+  return value;
+}
+
 SetupError refuseSerialOnlyOptions(const RunOptions& options, const ProcessGroup& group) {
   if (group.size() == 1) return {};
   for (const auto& [given, name] : {std::pair{!options.dumpTangent.empty(), "--dump-tangent"},
@@ -316,7 +325,7 @@ int runCommand(const RunOptions& options) {
   const auto start = Clock::now();
   if (options.threads > 0) omp_set_num_threads(options.threads);
   ProcessGroup& group = processGroup();
-  const bool writes = group.rank() == 0;  // the one process that prints and writes the results
+  const bool writes = group.rank() == 0;  // the one process that prints (and checks the path)
   std::unique_ptr<Model> model;
   std::unique_ptr<verification::ReferenceTracker> references;
   std::string path;
@@ -360,15 +369,20 @@ int runCommand(const RunOptions& options) {
   ResultsWriter writer;
   {
     SetupError opened;
-    if (writes) {
-      try {
-        writer.open(path,
-                    {spec.deckText, options.commandLine, spec.title, COVCONTACT_VERSION,
-                     options.deck, inputs},
-                    model->mesh(), selection);
-      } catch (const OutputError& error) {
-        opened = {kExitIo, std::string("covcontact: error: ") + error.what()};
-      }
+    ParallelOutput parallel;
+    if (group.size() > 1) {
+      parallel = {
+          group.rank(), group.size(),
+          [&group](hid_t access, hid_t transfer) { group.useCollectiveFile(access, transfer); },
+          [&group](int code, const std::string& message) { return group.agree(code, message); }};
+    }
+    try {
+      writer.open(path,
+                  {spec.deckText, options.commandLine, spec.title, COVCONTACT_VERSION, options.deck,
+                   inputs},
+                  model->mesh(), selection, parallel);
+    } catch (const OutputError& error) {
+      opened = {kExitIo, std::string("covcontact: error: ") + error.what()};
     }
     const auto [code, message] = group.agree(opened.code, opened.message);
     if (code != kExitOk) {
@@ -377,8 +391,8 @@ int runCommand(const RunOptions& options) {
     }
   }
   Progress progress(plannedSteps(spec), quiet, options.newtonLog && writes);
-  RunObserver observer(*model, writes ? &writer : nullptr, progress, selection.stress, group,
-                       references.get());
+  RunObserver observer(*model, writer, writes, progress, selection.stress, group,
+                       writes ? references.get() : nullptr);
   stopSignal.store(false);
   std::signal(SIGINT, requestStop);
   std::signal(SIGTERM, requestStop);
@@ -427,12 +441,10 @@ int runCommand(const RunOptions& options) {
     progress.finish();
     if (writes) std::cerr << error.what() << "\n";
     const SolverStatistics done = stepper.statistics();
-    if (writes) {
-      writer.close({"input error", done.steps, done.iterations, done.cutbacks,
-                    std::chrono::duration<double>(Clock::now() - start).count(), error.what(),
-                    observer.linearSolver(), done.linear.krylovIterations,
-                    done.linear.krylovFallbacks});
-    }
+    writer.close({"input error", done.steps, done.iterations, done.cutbacks,
+                  rankZeroValue(group, std::chrono::duration<double>(Clock::now() - start).count()),
+                  error.what(), observer.linearSolver(), done.linear.krylovIterations,
+                  done.linear.krylovFallbacks});
     return kExitInput;
   } catch (const std::exception& error) {
     // Memory ran out in a step (the factor, an assembly): the converged steps are on disk; the
@@ -451,8 +463,10 @@ int runCommand(const RunOptions& options) {
                                     ? std::string(error.what())
                                     : outOfMemoryMessage("solving a step", model.get());
     std::cerr << "covcontact: error: " << message << "\n";
-    if (writes) {
-      std::cerr << keptStepsMessage(done.steps, observer.writtenSteps(), path);
+    std::cerr << keptStepsMessage(done.steps, observer.writtenSteps(), path);
+    // On several processes the file is written together; memory runs out on one process, which
+    // ends the run alone (the file keeps every step written so far, each flushed when written).
+    if (group.size() == 1) {
       writer.close({"out of memory", done.steps, done.iterations, done.cutbacks,
                     std::chrono::duration<double>(Clock::now() - start).count(), message,
                     observer.linearSolver(), done.linear.krylovIterations,
@@ -469,11 +483,11 @@ int runCommand(const RunOptions& options) {
       options.cost ? costLine(*model, work, summary.totalIterations + summary.discardedIterations,
                               seconds, group)
                    : std::string();
-  if (!writes) return exitCodeOf(summary.outcome);
   writer.close({outcomeName(summary.outcome), summary.stepsConverged, summary.totalIterations,
-                summary.totalCutbacks, seconds, summary.message, observer.linearSolver(),
-                work.linear.krylovIterations, work.linear.krylovFallbacks,
+                summary.totalCutbacks, rankZeroValue(group, seconds), summary.message,
+                observer.linearSolver(), work.linear.krylovIterations, work.linear.krylovFallbacks,
                 summary.lineSearchRetries, summary.discardedIterations});
+  if (!writes) return exitCodeOf(summary.outcome);
   if (summary.outcome == RunSummary::Outcome::Completed) {
     // The work of failed attempts (retried with line search or cut back) is not in the
     // iterations of the converged steps; it is said separately.

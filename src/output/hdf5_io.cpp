@@ -33,8 +33,13 @@ Dataset writeArray(FileRef file, hid_t parent, const std::string& name, const Sc
                                    H5P_DEFAULT, H5P_DEFAULT),
                         file.path, operation));
   if (rows == 0 || (rank == 2 && cols == 0)) return dataset;  // nothing to transfer when empty
-  checkStatus(H5Dwrite(dataset.get(), nativeType(Scalar{}), H5S_ALL, H5S_ALL, H5P_DEFAULT, data),
-              file.path, operation);
+  // The memory holds the whole array in the file's shape: the same selection picks the rows.
+  Space memory(check(H5Screate_simple(rank, dims.data(), nullptr), file.path, operation));
+  const hid_t transfer = selectShare(file, space.get(), rows, operation);
+  selectShare(file, memory.get(), rows, operation);
+  checkStatus(
+      H5Dwrite(dataset.get(), nativeType(Scalar{}), memory.get(), space.get(), transfer, data),
+      file.path, operation);
   return dataset;
 }
 
@@ -80,6 +85,29 @@ hid_t check(hid_t id, const std::string& file, const std::string& operation) {
 
 void checkStatus(herr_t status, const std::string& file, const std::string& operation) {
   if (status < 0) fail(file, operation);
+}
+
+hid_t selectShare(FileRef file, hid_t space, hsize_t rows, const std::string& operation) {
+  if (file.share == nullptr || file.share->parts == 1) {
+    checkStatus(H5Sselect_all(space), file.path, operation);
+    return H5P_DEFAULT;
+  }
+  const auto part = static_cast<hsize_t>(file.share->part);
+  const auto parts = static_cast<hsize_t>(file.share->parts);
+  const hsize_t begin = rows * part / parts, end = rows * (part + 1) / parts;
+  if (begin == end) {
+    checkStatus(H5Sselect_none(space), file.path, operation);
+  } else {
+    std::array<hsize_t, 2> start{begin, 0}, count{end - begin, 0};
+    if (H5Sget_simple_extent_ndims(space) == 2) {
+      H5Sget_simple_extent_dims(space, count.data(), nullptr);  // all columns
+      count[0] = end - begin;
+    }
+    checkStatus(
+        H5Sselect_hyperslab(space, H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr),
+        file.path, operation);
+  }
+  return file.share->transfer;
 }
 
 bool exists(FileRef file, hid_t parent, const std::string& name) {

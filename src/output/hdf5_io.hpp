@@ -78,11 +78,28 @@ class QuietErrors {
 hid_t check(hid_t id, const std::string& file, const std::string& operation);
 void checkStatus(herr_t status, const std::string& file, const std::string& operation);
 
-// A file handle together with the path used in error messages.
+// How the processes of a run on several processes share the writing of one file that they all
+// opened collectively (MPI-IO): every process makes the same calls with the same data, and part
+// `part` of `parts` writes rows [part * n / parts, (part + 1) * n / parts) of every array with
+// the `transfer` property list (collective transfers). One process: part 0 of 1, which writes
+// everything with the default transfer.
+struct WriteShare {
+  int part = 0;
+  int parts = 1;
+  hid_t transfer = H5P_DEFAULT;
+};
+
+// A file handle together with the path used in error messages, and the share of the writing
+// this process does (none: it writes everything).
 struct FileRef {
   hid_t id;
   const std::string& path;
+  const WriteShare* share = nullptr;
 };
+
+// Selects this process's rows [begin, end) of the first dimension in `space` (all of them
+// without a share, none for an empty share) and returns the transfer property list to use.
+hid_t selectShare(FileRef file, hid_t space, hsize_t rows, const std::string& operation);
 
 bool exists(FileRef file, hid_t parent, const std::string& name);
 Group createGroup(FileRef file, hid_t parent, const std::string& name);

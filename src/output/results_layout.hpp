@@ -2,6 +2,7 @@
 // the XDMF sidecar, the reader and the run comparison so that every path is spelled once.
 #pragma once
 
+#include <cstddef>
 #include <string>
 
 #include "mesh/mesh.hpp"
@@ -10,7 +11,9 @@
 namespace cc::layout {
 
 inline constexpr const char* kFormatName = "CovContact results";
-inline constexpr int kFormatVersion = 1;
+// 2: /cutbacks stores the reason as a fixed-length string (parallel HDF5 cannot write
+// variable-length data); version 1 files (variable-length reason) are still read.
+inline constexpr int kFormatVersion = 2;
 
 inline constexpr const char* kMeshGroup = "/mesh";
 inline constexpr const char* kCoordinates = "/mesh/coordinates";
@@ -57,8 +60,18 @@ struct ConvergenceRow {
   double wallSeconds;
 };
 
-// One row of /cutbacks; the reason is a variable-length UTF-8 string.
+// One row of /cutbacks; the reason is a UTF-8 string of at most kReasonBytes - 1 bytes, null
+// terminated (cutbackRow shortens a longer one at a character boundary, ending it with "...").
+inline constexpr std::size_t kReasonBytes = 1024;
 struct CutbackRow {
+  int step;
+  double time;
+  double newDt;
+  char reason[kReasonBytes];
+};
+CutbackRow cutbackRow(int step, double time, double newDt, const std::string& reason);
+// The row as format version 1 stored it (variable-length reason), for reading older files.
+struct CutbackRowV1 {
   int step;
   double time;
   double newDt;
@@ -68,5 +81,6 @@ struct CutbackRow {
 // File compound types of the two tables (also the memory types: fields are named and offset).
 h5::Type convergenceRowType();
 h5::Type cutbackRowType();
+h5::Type cutbackRowTypeV1();
 
 }  // namespace cc::layout

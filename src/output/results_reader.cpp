@@ -138,11 +138,18 @@ std::vector<IterationRecord> ResultsReader::convergence() const {
 
 std::vector<CutbackRecord> ResultsReader::cutbacks() const {
   h5::QuietErrors quiet;
-  const h5::Type rowType = layout::cutbackRowType();
-  std::vector<layout::CutbackRow> rows =
-      readTable<layout::CutbackRow>(ref(), layout::kCutbacks, rowType.get());
   std::vector<CutbackRecord> records;
-  for (const layout::CutbackRow& row : rows)
+  if (!storesVariableLengthReason()) {
+    const h5::Type rowType = layout::cutbackRowType();
+    for (const layout::CutbackRow& row :
+         readTable<layout::CutbackRow>(ref(), layout::kCutbacks, rowType.get()))
+      records.push_back({row.step, row.time, row.newDt, row.reason});
+    return records;
+  }
+  const h5::Type rowType = layout::cutbackRowTypeV1();
+  std::vector<layout::CutbackRowV1> rows =
+      readTable<layout::CutbackRowV1>(ref(), layout::kCutbacks, rowType.get());
+  for (const layout::CutbackRowV1& row : rows)
     records.push_back({row.step, row.time, row.newDt, row.reason != nullptr ? row.reason : ""});
   if (!rows.empty()) {
     const hsize_t count = rows.size();
@@ -150,6 +157,19 @@ std::vector<CutbackRecord> ResultsReader::cutbacks() const {
     H5Dvlen_reclaim(rowType.get(), space.get(), H5P_DEFAULT, rows.data());
   }
   return records;
+}
+
+// Format version 1 stored the cut-back reason as a variable-length string.
+bool ResultsReader::storesVariableLengthReason() const {
+  const std::string operation = "reading table '" + std::string(layout::kCutbacks) + "'";
+  h5::Dataset table(
+      h5::check(H5Dopen2(file_.get(), layout::kCutbacks, H5P_DEFAULT), path_, operation));
+  h5::Type type(h5::check(H5Dget_type(table.get()), path_, operation));
+  const int member = H5Tget_member_index(type.get(), "reason");
+  if (member < 0) h5::fail(path_, operation);
+  h5::Type reason(
+      h5::check(H5Tget_member_type(type.get(), static_cast<unsigned>(member)), path_, operation));
+  return H5Tis_variable_str(reason.get()) > 0;
 }
 
 }  // namespace cc

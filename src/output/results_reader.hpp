@@ -45,6 +45,7 @@ class ResultsReader {
 
  private:
   h5::FileRef ref() const { return {file_.get(), path_}; }
+  bool storesVariableLengthReason() const;
   // H5I type of the object at `path`, or H5I_BADID if some component of it does not exist.
   H5I_type_t objectType(const std::string& path) const;
 

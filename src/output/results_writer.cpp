@@ -65,6 +65,7 @@ h5::Dataset createTable(h5::FileRef file, const char* name, hid_t rowType) {
       file.path, operation));
 }
 
+// Every process extends the table (collective with several processes); part 0 writes the row.
 void appendRow(h5::FileRef file, hid_t table, const char* name, hid_t rowType, const void* row) {
   const std::string operation = std::string("appending to table '") + name + "'";
   h5::Space current(h5::check(H5Dget_space(table), file.path, operation));
@@ -78,7 +79,15 @@ void appendRow(h5::FileRef file, hid_t table, const char* name, hid_t rowType, c
       H5Sselect_hyperslab(fileSpace.get(), H5S_SELECT_SET, &rows, nullptr, &one, nullptr),
       file.path, operation);
   h5::Space memorySpace(h5::check(H5Screate_simple(1, &one, nullptr), file.path, operation));
-  h5::checkStatus(H5Dwrite(table, rowType, memorySpace.get(), fileSpace.get(), H5P_DEFAULT, row),
+  hid_t transfer = H5P_DEFAULT;
+  if (file.share != nullptr && file.share->parts > 1) {
+    transfer = file.share->transfer;
+    if (file.share->part != 0) {
+      h5::checkStatus(H5Sselect_none(fileSpace.get()), file.path, operation);
+      h5::checkStatus(H5Sselect_none(memorySpace.get()), file.path, operation);
+    }
+  }
+  h5::checkStatus(H5Dwrite(table, rowType, memorySpace.get(), fileSpace.get(), transfer, row),
                   file.path, operation);
 }
 
@@ -146,6 +155,8 @@ void checkOutputWritable(const std::string& h5Path, const OutputSelection& selec
 struct ResultsWriter::State {
   ResultsFileLock lock;  // declared first: released after the file is closed
   std::string path;
+  h5::WriteShare share;
+  h5::PropertyList transfer;  // collective transfers (several processes)
   OutputSelection selection;
   long numNodes = 0;
   long numElements = 0;
@@ -158,7 +169,7 @@ struct ResultsWriter::State {
   std::optional<XdmfWriter> xdmf;
   std::optional<ReactionsCsv> csv;
 
-  h5::FileRef ref() const { return {file.get(), path}; }
+  h5::FileRef ref() const { return {file.get(), path, &share}; }
   void flush() const { h5::checkStatus(H5Fflush(file.get(), H5F_SCOPE_GLOBAL), path, "flushing"); }
 };
 
@@ -179,14 +190,27 @@ const std::string& ResultsWriter::path() const {
 }
 
 void ResultsWriter::open(const std::string& path, const RunInfo& info, const Mesh& mesh,
-                         const OutputSelection& selection) {
+                         const OutputSelection& selection, const ParallelOutput& parallel) {
   if (state_) throw std::logic_error("ResultsWriter::open: '" + state_->path + "' is still open");
   // Checked before the lock (which creates a missing file) and again once it is held: a second
   // run on the same file stops at the lock, before anything is truncated, and the file to be
-  // replaced is checked while no other writer can change it.
-  checkOutputWritable(path, selection, info.inputFiles);
-  ResultsFileLock lock(path);
-  checkOutputWritable(path, selection, info.inputFiles);
+  // replaced is checked while no other writer can change it. Rank 0 checks and locks for all.
+  ResultsFileLock lock;
+  std::string refused;
+  if (parallel.rank == 0) {
+    try {
+      checkOutputWritable(path, selection, info.inputFiles);
+      lock = ResultsFileLock(path);
+      checkOutputWritable(path, selection, info.inputFiles);
+    } catch (const OutputError& error) {
+      if (parallel.size == 1) throw;
+      refused = error.what();
+    }
+  }
+  if (parallel.size > 1) {
+    const auto [code, message] = parallel.agree(refused.empty() ? 0 : 1, refused);
+    if (code != 0) throw OutputError(message);
+  }
   h5::QuietErrors quiet;
   auto state = std::make_unique<State>();
   state->lock = std::move(lock);
@@ -194,6 +218,12 @@ void ResultsWriter::open(const std::string& path, const RunInfo& info, const Mes
   state->selection = selection;
   state->numNodes = mesh.numNodes();
   h5::PropertyList access(h5::check(H5Pcreate(H5P_FILE_ACCESS), path, "creating the file"));
+  if (parallel.size > 1) {
+    state->transfer =
+        h5::PropertyList(h5::check(H5Pcreate(H5P_DATASET_XFER), path, "creating the file"));
+    parallel.collective(access.get(), state->transfer.get());
+    state->share = {parallel.rank, parallel.size, state->transfer.get()};
+  }
   h5::checkStatus(H5Pset_libver_bounds(access.get(), kFormatLowBound, kFormatHighBound), path,
                   "choosing the file format");
   // Our flock (above) excludes other writers; HDF5's own flock would conflict with it.
@@ -209,6 +239,7 @@ void ResultsWriter::open(const std::string& path, const RunInfo& info, const Mes
   h5::writeAttribute(file, file.id, "deck_path", info.deckPath);
   h5::writeAttribute(file, file.id, "command_line", info.commandLine);
   h5::writeAttribute(file, file.id, "deck_text", info.deckText);
+  h5::writeAttribute(file, file.id, "writing_processes", parallel.size);
 
   std::vector<XdmfBlock> visualBlocks = writeMesh(file, mesh);
   for (const ElementBlock& block : mesh.blocks) state->numElements += block.connectivity.rows();
@@ -217,10 +248,11 @@ void ResultsWriter::open(const std::string& path, const RunInfo& info, const Mes
   state->cutbacks = createTable(file, layout::kCutbacks, state->cutbackType.get());
   state->flush();
 
-  if (selection.xdmf)
+  // The sidecars are small text files: rank 0 writes them.
+  if (selection.xdmf && parallel.rank == 0)
     state->xdmf.emplace(xdmfPathFor(path), fs::path(path).filename().string(), state->numNodes,
                         state->numElements, std::move(visualBlocks));
-  if (selection.csv) state->csv.emplace(csvPathFor(path), selection.contact);
+  if (selection.csv && parallel.rank == 0) state->csv.emplace(csvPathFor(path), selection.contact);
   state_ = std::move(state);
 }
 
@@ -359,7 +391,8 @@ void ResultsWriter::appendIteration(const IterationRecord& iteration) {
 void ResultsWriter::appendCutback(const CutbackRecord& cutback) {
   if (!state_) throw std::logic_error("ResultsWriter::appendCutback: no file is open");
   h5::QuietErrors quiet;
-  const layout::CutbackRow row{cutback.step, cutback.time, cutback.newDt, cutback.reason.c_str()};
+  const layout::CutbackRow row =
+      layout::cutbackRow(cutback.step, cutback.time, cutback.newDt, cutback.reason);
   appendRow(state_->ref(), state_->cutbacks.get(), layout::kCutbacks, state_->cutbackType.get(),
             &row);
 }

@@ -4,8 +4,10 @@
 // inside writeStep's own flush can damage the file (HDF5 cannot flush atomically; measured there).
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <string>
+#include <utility>
 
 #include "mesh/mesh.hpp"
 #include "output/hdf5_io.hpp"
@@ -54,6 +56,20 @@ std::string csvPathFor(const std::string& h5Path);
 void checkOutputWritable(const std::string& h5Path, const OutputSelection& selection = {},
                          const std::vector<std::string>& inputs = {});
 
+// A run on several processes writes one file collectively (parallel HDF5 over MPI-IO): every
+// process calls the writer with the same records, the file's metadata is written by all, the
+// rows of every array are divided among the processes (WriteShare), and rank 0 alone checks and
+// locks the path and writes the XDMF and CSV sidecars. The output module does not know MPI: the
+// process group sets up the property lists (`collective`) and agrees on errors (`agree`).
+struct ParallelOutput {
+  int rank = 0;
+  int size = 1;
+  // Makes a file access list use MPI-IO on the run's processes and a transfer list collective.
+  std::function<void(hid_t fileAccess, hid_t transfer)> collective;
+  // {code, message} of the lowest rank whose code is not 0, on every rank.
+  std::function<std::pair<int, std::string>(int, const std::string&)> agree;
+};
+
 class ResultsWriter {
  public:
   ResultsWriter();
@@ -64,8 +80,10 @@ class ResultsWriter {
   // Takes the results file's lock (refusing a file another run is writing), checks it may be
   // replaced, then creates (truncates) the files and writes the run info and the mesh. The lock
   // is held until close(). Throws OutputError.
+  // With `parallel.size` > 1 every process of the run calls open (and then every other member)
+  // together.
   void open(const std::string& path, const RunInfo& info, const Mesh& mesh,
-            const OutputSelection& selection = {});
+            const OutputSelection& selection = {}, const ParallelOutput& parallel = {});
   // Writes /steps/<6-digit step>, flushes the file, then appends the step to the sidecars.
   // Throws std::invalid_argument if a selected field is missing or has the wrong size.
   void writeStep(const StepRecord& step);

@@ -24,6 +24,9 @@ class SingleProcess final : public ProcessGroup {
   std::vector<int> partition(const std::vector<int>& offsets, const std::vector<int>&) override {
     return std::vector<int>(offsets.empty() ? 0 : offsets.size() - 1, 0);
   }
+  void useCollectiveFile(std::int64_t, std::int64_t) override {
+    throw std::logic_error("useCollectiveFile: a run on one process writes without MPI-IO");
+  }
   [[noreturn]] void abort(int code) override { std::exit(code); }
 };
 

@@ -12,6 +12,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <utility>
 #include <vector>
@@ -34,6 +35,10 @@ class ProcessGroup {
   // and few cut edges (PT-Scotch through PETSc); the same vector on every process.
   virtual std::vector<int> partition(const std::vector<int>& offsets,
                                      const std::vector<int>& adjacency) = 0;
+  // Sets up two HDF5 property lists (ids as hid_t) so that the processes open one file
+  // together through MPI-IO and transfer its data collectively (the results writer's
+  // ParallelOutput). Only for more than one process: a serial run writes without MPI.
+  virtual void useCollectiveFile(std::int64_t fileAccess, std::int64_t transfer) = 0;
   // Ends every process of the run at once with `code`: for a process that cannot go on while
   // the others would wait for it in the next collective operation.
   [[noreturn]] virtual void abort(int code) = 0;

@@ -5,7 +5,8 @@
   along a base, with cut-backs and an inverted element on the way) on 2 processes: the serial
   run's step times and iteration counts exactly, forces and displacements to 1e-8, the serial
   run's per-iteration contact counts (--newton-log: in contact, changed state, changed segment),
-  and at least one contact point whose master segment moved to another process.
+  at least one contact point whose master segment moved to another process, and one results
+  file written by both processes (parallel HDF5) with the serial file's layout and XDMF.
 --case restart: input/stress/restart_6_1.deck on 2 processes stopped by SIGTERM (sent to the
   processes, as a scheduler does) after step 8: exit 4 as in a serial run, every reported step
   in the file; continued with --restart on 1 and on 3 processes, every remaining step as the
@@ -96,6 +97,45 @@ def compare_steps(reference_path, results_path, first_step=1):
     return len(names), worst
 
 
+def layout_of(path):
+    """Every object of a results file: path -> (kind, shape, dtype, sorted attribute names)."""
+    objects = {}
+
+    def visit(name, item):
+        shape = getattr(item, "shape", None)
+        dtype = str(getattr(item, "dtype", ""))
+        objects[name] = (type(item).__name__, shape, dtype, sorted(item.attrs.keys()))
+
+    with h5py.File(path, "r") as h5:
+        h5.visititems(visit)
+        root = sorted(h5.attrs.keys()), int(h5.attrs["writing_processes"])
+    return objects, root
+
+
+def same_layout(serial, distributed):
+    """The file the processes wrote together has the serial file's layout object by object."""
+    (serial_objects, (serial_root, serial_writers)), (objects, (root, writers)) = (
+        layout_of(serial), layout_of(distributed))
+    check(serial_writers == 1 and writers == 2,
+          f"writing_processes: serial {serial_writers}, 2 processes {writers}")
+    check(root == serial_root, f"root attributes {root}, serial {serial_root}")
+    differ = [name for name in sorted(set(serial_objects) | set(objects))
+              if serial_objects.get(name) != objects.get(name)]
+    check(not differ, f"{len(differ)} objects differ from the serial file's, e.g. "
+          f"{[(n, serial_objects.get(n), objects.get(n)) for n in differ[:3]]}")
+    # Rank 0 writes the sidecars: the XDMF as serial (but for the file name it points to), the
+    # CSV with the serial header and one row per written step.
+    with open(serial[:-3] + ".xdmf") as a, open(distributed[:-3] + ".xdmf") as b:
+        expected = a.read().replace(os.path.basename(serial), os.path.basename(distributed))
+        check(b.read() == expected, "the XDMF sidecar differs from the serial run's")
+    with open(serial[:-3] + "_reactions.csv") as a, open(distributed[:-3] + "_reactions.csv") as b:
+        want, got = a.read().splitlines(), b.read().splitlines()
+        check(len(got) == len(want) and got[0] == want[0],
+              f"CSV sidecar: {len(got)} lines, header {got[:1]}; serial {len(want)}, {want[:1]}")
+    print(f"one file written by 2 processes: {len(objects)} objects, the serial layout; "
+          f"XDMF and CSV sidecars as serial")
+
+
 def crossing_case(args):
     deck = os.path.join(args.source, "tests/regression/parallel/decks/block_crossing_partition.deck")
     serial = os.path.join(args.scratch, "serial.h5")
@@ -111,6 +151,7 @@ def crossing_case(args):
     check(distributed_log == serial_log,
           f"--newton-log contact counts differ from the serial run's:\n{distributed_log[:20]}\n"
           f"serial:\n{serial_log[:20]}")
+    same_layout(serial, distributed)
     moved = [line for line in result.stdout.splitlines()
              if line.startswith("contact points whose master segment moved")]
     check(len(moved) == 1, f"no line on master segments changing process:\n{result.stdout}")
