@@ -296,7 +296,6 @@ std::string costLine(const Model& model, const SolverStatistics& work, int itera
       group.bytesMoved() * perIteration, total(5) * perIteration, total(6) * perIteration);
 }
 
-// Options that inspect one process's whole tangent, which no process has under mpirun.
 // Rank 0's value on every process: what the processes write into the shared file must be the
 // same everywhere (a wall time measured on each differs).
 double rankZeroValue(ProcessGroup& group, double value) {
@@ -305,6 +304,7 @@ double rankZeroValue(ProcessGroup& group, double value) {
   return value;
 }
 
+// Options that inspect one process's whole tangent, which no process has under mpirun.
 SetupError refuseSerialOnlyOptions(const RunOptions& options, const ProcessGroup& group) {
   if (group.size() == 1) return {};
   for (const auto& [given, name] : {std::pair{!options.dumpTangent.empty(), "--dump-tangent"},
