@@ -254,6 +254,7 @@ std::string costLine(const Model& model, const SolverStatistics& work, int itera
   for (std::size_t c = 0; c < timings.byContribution.size(); ++c) {
     (c < elementSets ? elements : contact) += timings.byContribution[c].evaluate;
   }
+  contact += model.contactCompletionSeconds();  // the others' points, once per converged solve
   rusage usage{};
   ::getrusage(RUSAGE_SELF, &usage);
   const double cpu = static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +

@@ -57,6 +57,9 @@ class Model : public NonlinearProblem {
   // Several processes: converged steps in which a contact point's master segment belonged to
   // another process than at the step before, summed over points and steps (diagnostics).
   long masterOwnerChanges() const { return masterOwnerChanges_; }
+  // Several processes: seconds spent evaluating the other processes' contact points once per
+  // converged solve (completeContactTrials; the assembler's timings do not include it).
+  double contactCompletionSeconds() const { return contactCompletionSeconds_; }
 
   // Restart (model_state.cpp): the committed element and contact history (displacement and
   // step size are left to the caller), and its restoration. restoreHistory throws
@@ -125,6 +128,7 @@ class Model : public NonlinearProblem {
   AssemblyState lastState_;
   Eigen::Matrix3Xd lastCurrent_, lastPrevious_;
   bool contactTrialsComplete_ = true;
+  double contactCompletionSeconds_ = 0;
 };
 
 // Loads the mesh and builds the model. Throws InputError naming the deck line of whatever does

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <chrono>
 #include <numeric>
 
 #include "model/model.hpp"
@@ -126,6 +127,7 @@ void Model::rememberAssemblyState(const AssemblyState& state) {
 void Model::completeContactTrials() {
   if (!group_ || contactTrialsComplete_) return;
   contactTrialsComplete_ = true;
+  const auto start = std::chrono::steady_clock::now();
   Eigen::VectorXd force;
   for (auto& pair : contactPairs_) {
     for (std::size_t item = 0; item < pair->itemCount(); ++item) {
@@ -134,6 +136,8 @@ void Model::completeContactTrials() {
       (void)pair->evaluate(item, lastState_, force, nullptr);
     }
   }
+  contactCompletionSeconds_ +=
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 void Model::countMasterOwnerChanges() {
