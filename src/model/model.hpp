@@ -44,8 +44,8 @@ class Model : public NonlinearProblem {
   std::vector<int> nodeOwners() const override { return nodeOwner_; }
 
   // A run on several processes (model_distribution.cpp): partitions the nodes (PT-Scotch),
-  // gives each element to the process owning most of its nodes and each contact point to the
-  // owner of its first (slave) node. Every process keeps the whole mesh and state (the contact
+  // gives each element to the process owning most of its nodes and the contact points of each
+  // pair in equal blocks of their index. Every process keeps the whole mesh and state (the contact
   // search runs everywhere); in Newton's iterations it evaluates and adds only its own elements
   // and contact points. assemble() then sums the internal force over the processes and agrees on
   // failures; once a solve has converged, augment() and commitStep() first evaluate the other
@@ -94,6 +94,7 @@ class Model : public NonlinearProblem {
   friend std::unique_ptr<Model> buildModel(const ProblemSpec& spec);
   void shareElementHistory();
   void countMasterOwnerChanges();
+  int contactPointOwner(const contact::ContactPair& pair, std::size_t item) const;
   bool ownsContactPoint(const contact::ContactPair& pair, std::size_t item) const;
   void rememberAssemblyState(const AssemblyState& state);
   void completeContactTrials();
