@@ -45,11 +45,11 @@ class Model : public NonlinearProblem {
 
   // A run on several processes (model_distribution.cpp): partitions the nodes (PT-Scotch),
   // gives each element to the process owning most of its nodes and the contact points of each
-  // pair in equal blocks of their index. Every process keeps the whole mesh and state (the contact
-  // search runs everywhere); in Newton's iterations it evaluates and adds only its own elements
-  // and contact points. assemble() then sums the internal force over the processes and agrees on
-  // failures; once a solve has converged, augment() and commitStep() first evaluate the other
-  // processes' contact points at the converged state (completeContactTrials), so that the
+  // pair dealt out in turn (point k to process k mod P). Every process keeps the whole mesh and
+  // state (the contact search runs everywhere); in Newton's iterations it evaluates and adds only
+  // its own elements and contact points. assemble() then sums the internal force over the processes
+  // and agrees on failures; once a solve has converged, augment() and commitStep() first evaluate
+  // the other processes' contact points at the converged state (completeContactTrials), so that the
   // contact history and output stay whole and identical everywhere; commitStep() shares the
   // element history. A no-op on one process. Returns a line describing the partition (empty on
   // one process).

@@ -112,13 +112,15 @@ void Model::shareElementHistory() {
   }
 }
 
-// Contact points are divided in equal blocks of their index, not by the owner of their nodes:
-// the partition balances nodes, and a contact surface is often inside one part (the scaling
-// decks put every point on one of 2 processes), which would leave all contact work there. Any
-// process can evaluate any point (the state is replicated); the entries of rows another process
-// owns travel with PETSc's matrix assembly, like those of elements on a partition boundary.
-int Model::contactPointOwner(const contact::ContactPair& pair, std::size_t item) const {
-  return static_cast<int>(item * static_cast<std::size_t>(group_->size()) / pair.itemCount());
+// Contact points are dealt out in turn (point k to process k mod P), not by the owner of their
+// nodes: the partition balances nodes, and a contact surface often lies inside one part (the
+// scaling decks put every point on one of 2 processes). Dealt in turn rather than in blocks of
+// the index, because the points in contact are usually a contiguous run of indices (the part of
+// a slave surface under a smaller master) and would fall into one block. Any process can
+// evaluate any point (the state is replicated); entries of rows another process owns travel
+// with PETSc's matrix assembly, like those of elements on a partition boundary.
+int Model::contactPointOwner(const contact::ContactPair&, std::size_t item) const {
+  return static_cast<int>(item % static_cast<std::size_t>(group_->size()));
 }
 
 bool Model::ownsContactPoint(const contact::ContactPair& pair, std::size_t item) const {
