@@ -248,24 +248,13 @@ SegmentProjection MasterSurface::walk(int start, const Eigen::Vector2d& guess,
     if (next < 0 && leavesOnlyToVisited) {
       // Above a ridge (see kRidgeTolerance): keep the segment the walk started on, so that the
       // point does not change segment between Newton iterations, else the least exceeded one.
-      // Only shared edges make a ridge: beyond a free edge the point lies in the band where
-      // its force fades out (freeEdgeReach), checked above.
-      const auto ridgeExcess = [&](std::size_t k) {
-        double excess = 0;
-        for (int edge : violatedEdges(visitedXi[k])) {
-          if (neighbour(visited[k], edge) >= 0) {
-            excess = std::max(excess, edgeExcess(visitedXi[k], edge));
-          }
-        }
-        return excess;
-      };
       std::size_t chosen = 0;
-      if (ridgeExcess(0) > kRidgeTolerance) {
+      if (largestExcess(visitedXi[0]) > kRidgeTolerance) {
         for (std::size_t k = 1; k < visited.size(); ++k) {
-          if (ridgeExcess(k) < ridgeExcess(chosen)) chosen = k;
+          if (largestExcess(visitedXi[k]) < largestExcess(visitedXi[chosen])) chosen = k;
         }
       }
-      if (ridgeExcess(chosen) > kRidgeTolerance) return {};
+      if (largestExcess(visitedXi[chosen]) > kRidgeTolerance) return {};
       return projectionOn(visited[chosen], visitedXi[chosen]);
     }
     segment = next;

@@ -265,7 +265,7 @@ NewtonResult Newton::solve(const NewtonStep& step, const NewtonSpec& spec,
     if (!spec.lineSearch && enteredCycle(activeSets, changes)) {
       // The load stepper retries the step with the line search at once (load_stepper.cpp),
       // instead of after maxIterations iterations of the cycle.
-      return failed(iteration, FailureKind::Diverged,
+      return failed(iteration - 1, FailureKind::Diverged,
                     fmt::format("the contact active set returned at iteration {} to an earlier "
                                 "iteration's (a cycle)",
                                 iteration));
