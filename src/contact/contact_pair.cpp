@@ -247,7 +247,7 @@ void ContactPair::commitStep() {
 void ContactPair::restoreStep() {
   restoreAugmentation();
   for (PairPoint& point : points_) {
-    if (searchesMasterSegments(config_.kind) && config_.smoothMaster) {
+    if (searchesMasterSegments(config_.kind)) {
       point.segment = point.committedSearchSegment;
       point.xi = point.committedSearchXi;
     }

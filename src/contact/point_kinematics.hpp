@@ -101,8 +101,6 @@ PointKinematics<Scalar> projectedPointKinematics(const NodeMatrix<Scalar>& itemN
                                   kin.convectedTraction);
     kin.slip = kin.frame.rho - previousPoint;  // eq. (47)
   }
-  // Beyond a free edge of the master the force fades out (contact_point.hpp, kFreeEdgeBand).
-  const Scalar edgeShare = freeEdgeFactor(parameter, layout.freeEdges);
   if (layout.slaveCount == 1) {
     kin.weight = Scalar(slave.nodalArea);
   } else if (slave.frozenAreaElement) {
@@ -118,7 +116,8 @@ PointKinematics<Scalar> projectedPointKinematics(const NodeMatrix<Scalar>& itemN
     interpolateSurface(slaveNodes, shape, point, tangents, nullptr);
     kin.weight = tangents[0].cross(tangents[1]).norm() * slave.gaussWeight;
   }
-  kin.weight *= edgeShare;
+  // Beyond a free edge of the master the force fades out (contact_point.hpp, kFreeEdgeBand).
+  if (layout.freeEdges != 0) kin.weight *= freeEdgeFactor(parameter, layout.freeEdges);
   return kin;
 }
 
