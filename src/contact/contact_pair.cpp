@@ -20,6 +20,7 @@ ContactPair::ContactPair(ContactPairConfig config, const FaceSet& master,
                          std::vector<PairPoint> points)
     : config_(std::move(config)), tracker_(master), points_(std::move(points)) {
   tracker_.setSmooth(config_.smoothMaster);
+  tracker_.setFadingEdges(config_.fadingEdges);
   for (PairPoint& p : points_) buildItem(p);
 }
 
@@ -71,6 +72,11 @@ void ContactPair::buildItem(PairPoint& point) const {
     layout.masterCount = master().nodesPerSegment();
     for (int k = 0; k < layout.masterCount; ++k) {
       layout.masterLocal[k] = localIndex(master().node(point.segment, k));
+    }
+    if (searchesMasterSegments(config_.kind) && config_.fadingEdges) {
+      for (int e = 0; e < 4; ++e) {
+        if (master().neighbour(point.segment, e) < 0) layout.freeEdges |= 1u << e;
+      }
     }
   }
   const int previous = point.committed.projected ? point.committed.segment : -1;

@@ -37,6 +37,8 @@ struct ContactPairConfig {
   // normal and curvature on Nagata patches (nagata.hpp) over nodal normals taken from the
   // converged configuration at the start of each step and held fixed over it.
   bool smoothMaster = false;
+  // Free master edges where the force fades out (contact_point.hpp, kFreeEdgeBand).
+  bool fadingEdges = false;
 };
 
 // A rigid translation of the STAS surface as a function of time (called serially).

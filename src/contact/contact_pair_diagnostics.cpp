@@ -1,7 +1,8 @@
 // Contact pair diagnostics: how many points changed their state (open/stick/slip) or master
 // segment between two Newton iterations, and how many are in contact. A residual whose active
 // set keeps changing is not smooth, and Newton cannot converge quadratically through it
-// (issue 14; `covcontact run --newton-log` prints it per iteration).
+// (issue 14; `covcontact run --newton-log` prints it per iteration). The signature of the active
+// set lets Newton see the set return to an earlier iteration's (a cycle).
 #include "contact/contact_pair.hpp"
 
 namespace cc::contact {
@@ -10,6 +11,7 @@ ContactChanges ContactPair::takeChanges() {
   countedState_.resize(points_.size(), ContactState::Open);
   countedSegment_.resize(points_.size(), -1);
   ContactChanges changes;
+  changes.signature = 0xcbf29ce484222325ULL;
   for (std::size_t i = 0; i < points_.size(); ++i) {
     const PairPoint& point = points_[i];
     if (!evaluatedThisPass(point)) continue;  // another process evaluates it
@@ -20,7 +22,14 @@ ContactChanges ContactPair::takeChanges() {
     if (segment >= 0 && countedSegment_[i] >= 0 && segment != countedSegment_[i]) {
       ++changes.segment;
     }
-    if (state != ContactState::Open) ++changes.active;
+    if (state != ContactState::Open) {
+      ++changes.active;
+      // FNV-1a over (point, state, segment) of the points in contact.
+      for (const std::uint64_t word :
+           {std::uint64_t(i), std::uint64_t(state), std::uint64_t(std::int64_t(segment))}) {
+        changes.signature = (changes.signature ^ word) * 0x100000001b3ULL;
+      }
+    }
     countedState_[i] = state;
     countedSegment_[i] = segment;
   }

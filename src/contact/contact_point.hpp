@@ -19,6 +19,20 @@
 
 namespace cc::contact {
 
+// Beyond a free edge of the master surface (an edge without a neighbour) a projection still
+// counts with the full contact force up to kFreeEdgeTolerance in parameter space (1% of the half
+// segment): a slave node lying on the master's boundary edge, common where both bodies end in the
+// same plane, must not drop out of contact whenever it moves by round-off or by a Poisson
+// contraction across the edge. Beyond that, with `edge=fade`, the force falls to zero smoothly
+// over kFreeEdgeBand (freeEdgeFactor); by default (`edge=sharp`, as the paper's examples ran)
+// it jumps to zero. With a force that jumped to zero at the tolerance, a slave node on the free
+// edge of a die as wide as the slab had no equilibrium: held in contact it was pushed out, let
+// go it came back, and Newton cycled with period 2-3 through every cut-back (issue 14,
+// ironing_nts_mu03_equal). The band is 10% of the segment; the force carried beyond the edge is
+// the regularization's error.
+constexpr double kFreeEdgeTolerance = 1e-2;
+constexpr double kFreeEdgeBand = 0.2;
+
 // Where the nodes of one contact item sit in its node list (local indices), and the slave
 // side's fixed shape-function values at the slave point.
 struct PointLayout {
@@ -32,6 +46,9 @@ struct PointLayout {
   std::array<int, 9> previousMasterLocal{};  // it differs from the current one (eq. (47))
   shape::SurfaceType previousMasterType = shape::SurfaceType::Quad4;
   int nodeCount = 0;  // size of the item's node list
+  // Edges of the current master segment without a neighbour (bit e for edge e, numbered as in
+  // master_surface.cpp: xi2 = -1, xi1 = 1, xi2 = 1, xi1 = -1).
+  unsigned freeEdges = 0;
   // Smoothed master (nagata.hpp, Quad4): the nodal normals of the current and the previous
   // segment, held fixed over the step; the geometry (and the tangent) is that of the Nagata
   // patch for these normals.
@@ -84,6 +101,25 @@ struct PointResponse {
   ContactState state = ContactState::Open;
   bool frictional = false;
 };
+
+// The share of the contact force a point keeps beyond the master's free edges: 1 up to
+// kFreeEdgeTolerance, then 1 - 3 s^2 + 2 s^3 with s the further excess over kFreeEdgeBand, 0
+// beyond (C1 in xi, so the force goes to zero without a jump or a kink; see kFreeEdgeTolerance).
+template <class Scalar>
+Scalar freeEdgeFactor(const Eigen::Matrix<Scalar, 2, 1>& xi, unsigned freeEdges) {
+  Scalar factor(1.0);
+  for (int edge = 0; edge < 4; ++edge) {
+    if (!(freeEdges & (1u << edge))) continue;
+    const Scalar excess = edge == 0   ? Scalar(-1.0 - xi[1])
+                          : edge == 1 ? Scalar(xi[0] - 1.0)
+                          : edge == 2 ? Scalar(xi[1] - 1.0)
+                                      : Scalar(-1.0 - xi[0]);
+    const Scalar s = (excess - kFreeEdgeTolerance) / kFreeEdgeBand;
+    if (scalarValue(s) >= 1) return Scalar(0.0);
+    if (scalarValue(s) > 0) factor *= 1.0 - s * s * (3.0 - 2.0 * s);
+  }
+  return factor;
+}
 
 // Normal penalty, trial step and return mapping at one point, Table 1 / Table 2.
 template <class Scalar>

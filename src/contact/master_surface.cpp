@@ -6,6 +6,8 @@
 #include <map>
 #include <utility>
 
+#include "contact/contact_point.hpp"
+
 namespace cc::contact {
 
 namespace {
@@ -14,11 +16,6 @@ namespace {
 constexpr int kMaxWalkHops = 64;
 // Parameter tolerance for "inside the segment": points on an edge or vertex belong to both.
 constexpr double kInsideTolerance = 1e-10;
-// Beyond a free edge of the master surface (an edge without a neighbour) a projection still
-// counts up to this distance in parameter space (1% of the half segment): a slave node lying on
-// the master's boundary edge, common where both bodies end in the same plane, must not drop out
-// of contact whenever it moves by round-off or by a Poisson contraction across the edge.
-constexpr double kFreeEdgeTolerance = 1e-2;
 // A point keeps the segment it is on while its projection leaves it across a shared edge by at
 // most this much in parameter space. Without this hysteresis a slave point lying exactly on an
 // edge where the master surface has a (round-off or deformation) kink is handed back and forth
@@ -71,11 +68,18 @@ double largestExcess(const Eigen::Vector2d& xi) {
 
 }  // namespace
 
+// Beyond a free edge of the master surface (an edge without a neighbour) a projection still
+// counts up to this distance in parameter space: full force up to kFreeEdgeTolerance; with
+// edge=fade a force falling smoothly to zero beyond (contact_point.hpp, freeEdgeFactor).
+double MasterSurface::freeEdgeReach() const {
+  return fadingEdges_ ? kFreeEdgeTolerance + kFreeEdgeBand : kFreeEdgeTolerance;
+}
+
 bool MasterSurface::accepts(int segment, const Eigen::Vector2d& xi, double tolerance) const {
   for (int edge : violatedEdges(xi)) {
     const double excess = edgeExcess(xi, edge);
     if (excess <= tolerance) continue;
-    if (neighbour(segment, edge) >= 0 || excess > kFreeEdgeTolerance) return false;
+    if (neighbour(segment, edge) >= 0 || excess > freeEdgeReach()) return false;
   }
   return true;
 }
@@ -235,7 +239,7 @@ SegmentProjection MasterSurface::walk(int start, const Eigen::Vector2d& guess,
     for (int edge : violatedEdges(p.xi)) {
       const int candidate = neighbour(segment, edge);
       if (candidate < 0) {
-        if (edgeExcess(p.xi, edge) > kFreeEdgeTolerance) leavesOnlyToVisited = false;
+        if (edgeExcess(p.xi, edge) > freeEdgeReach()) leavesOnlyToVisited = false;
       } else if (std::find(visited.begin(), visited.end(), candidate) == visited.end()) {
         next = candidate;
         break;

@@ -36,12 +36,15 @@ class MasterSurface {
   int node(int segment, int k) const { return segments_(segment, k); }
   // Neighbour across edge e (0: xi2 = -1, 1: xi1 = +1, 2: xi2 = +1, 3: xi1 = -1), or -1.
   int neighbour(int segment, int edge) const { return neighbours_[segment][edge]; }
+  double freeEdgeReach() const;  // in parameter space, see master_surface.cpp
   NodeMatrix<double> segmentNodes(int segment, const Eigen::Matrix3Xd& coordinates) const;
 
   // Smoothed geometry (issue 16, part 2; Quad4 only): once switched on, projections use the
   // Nagata patch of nagata.hpp over the nodal normals of the last updateNormals().
   void setSmooth(bool smooth) { smooth_ = smooth; }
   bool smooth() const { return smooth_; }
+  // Free edges where the contact force fades out (contact_point.hpp, kFreeEdgeBand).
+  void setFadingEdges(bool fading) { fadingEdges_ = fading; }
   // Nodal normals of the surface at `coordinates`: at each node the average of the adjacent
   // segments' corner normals weighted by their corner angles (Thuermer & Wuethrich 1998; on a
   // mesh symmetric about the node, e.g. a uniform one on a cylinder, the exact normal up to
@@ -81,6 +84,7 @@ class MasterSurface {
 
   shape::SurfaceType type_ = shape::SurfaceType::Quad4;
   bool smooth_ = false;
+  bool fadingEdges_ = false;
   Eigen::Matrix3Xd nodalNormals_;                        // per mesh node (zero off the surface)
   std::vector<std::array<double, 4>> tangentialScales_;  // per segment edge (nagata.hpp)
   Connectivity segments_;

@@ -116,6 +116,8 @@ PointKinematics<Scalar> projectedPointKinematics(const NodeMatrix<Scalar>& itemN
     interpolateSurface(slaveNodes, shape, point, tangents, nullptr);
     kin.weight = tangents[0].cross(tangents[1]).norm() * slave.gaussWeight;
   }
+  // Beyond a free edge of the master the force fades out (contact_point.hpp, kFreeEdgeBand).
+  if (layout.freeEdges != 0) kin.weight *= freeEdgeFactor(parameter, layout.freeEdges);
   return kin;
 }
 

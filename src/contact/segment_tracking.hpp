@@ -21,6 +21,7 @@ class SegmentTracker {
   const MasterSurface& master() const { return master_; }
   // Smoothed master (nagata.hpp): switch on, and the nodal normals for a step.
   void setSmooth(bool smooth) { master_.setSmooth(smooth); }
+  void setFadingEdges(bool fading) { master_.setFadingEdges(fading); }
   void updateNormals(const Eigen::Matrix3Xd& x) { master_.updateNormals(x); }
 
   // Assigns every point its master segment and parameter at the coordinates x; `moved` receives

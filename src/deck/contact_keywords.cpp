@@ -187,6 +187,10 @@ void handleContact(const ParsedLine& line, DeckState& state) {
          "surface=smooth applies to sts and nts pairs only (stas integrates on the "
          "master's own segments)");
   }
+  contact.masterEdge = choiceValue(masterEdges(), line.text("edge"));
+  if (contact.kind == ContactSpec::Kind::SegmentToAnalytical && line.given("edge")) {
+    fail(line.value("edge").where, "edge= applies to sts and nts pairs only");
+  }
   contact.where = line.where();
   const std::string& kindName = line.positional(0).text;
   state.faceSetUses.push_back(

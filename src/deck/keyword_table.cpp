@@ -232,6 +232,10 @@ KeywordDecl contactKeyword() {
                      "sts, nts: the master segments as meshed, or smoothed (Nagata patches "
                      "over nodal normals, Quad4 masters)")
                .withDefault("faceted"),
+           enumValue("edge", choiceNames(masterEdges()),
+                     "sts, nts: beyond the master's free edges no force (sharp), or a force "
+                     "fading smoothly to zero over 10% of a segment (fade)")
+               .withDefault("sharp"),
            identifierValue("name", "pair name in the output (default pairK for the K-th pair)")},
       .itemName = "name",
       .notes =

@@ -55,6 +55,12 @@ const Choices<ContactSpec::MasterSurface>& masterSurfaces() {
   return choices;
 }
 
+const Choices<ContactSpec::MasterEdge>& masterEdges() {
+  static const Choices<ContactSpec::MasterEdge> choices = {
+      {"sharp", ContactSpec::MasterEdge::Sharp}, {"fade", ContactSpec::MasterEdge::Fade}};
+  return choices;
+}
+
 const Choices<NewtonSpec::Criterion>& convergenceCriteria() {
   static const Choices<NewtonSpec::Criterion> choices = {
       {"energy", NewtonSpec::Criterion::Energy},

@@ -41,6 +41,7 @@ const Choices<RigidSurfaceSpec::Shape>& rigidShapes();
 const Choices<ContactSpec::Kind>& contactKinds();
 const Choices<ContactSpec::Enforcement>& contactEnforcements();
 const Choices<ContactSpec::MasterSurface>& masterSurfaces();
+const Choices<ContactSpec::MasterEdge>& masterEdges();
 const Choices<NewtonSpec::Criterion>& convergenceCriteria();
 const Choices<LinearSolverSpec::Method>& linearSolverMethods();
 const Choices<bool TangentPartsSpec::*>& tangentParts();  // snake_case field names

@@ -187,6 +187,7 @@ contact::ContactPairConfig pairConfig(const ContactSpec& spec) {
                            : contact::TangentMode::Paper;
   config.parts = contactTangentParts(spec.parts);
   config.smoothMaster = spec.masterSurface == ContactSpec::MasterSurface::Smooth;
+  config.fadingEdges = spec.masterEdge == ContactSpec::MasterEdge::Fade;
   return config;
 }
 

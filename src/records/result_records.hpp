@@ -3,6 +3,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstdint>
 #include <string>
 #include <utility>
 #include <vector>
@@ -86,12 +87,16 @@ struct StepRecord {
 
 // Contact points whose state (open/stick/slip) or master segment differs from the last Newton
 // iteration (diagnostics of non-smooth residuals, issue 14), and the points in contact.
+// The signature identifies the whole active set (every point's state and segment): Newton
+// detects a cycle of the active set when a signature of this step comes back (newton.cpp).
 struct ContactChanges {
   int state = 0;
   int segment = 0;
   int active = 0;
+  std::uint64_t signature = 0;
   ContactChanges& operator+=(const ContactChanges& other) {
     state += other.state, segment += other.segment, active += other.active;
+    signature = signature * 0x100000001b3ULL ^ other.signature;  // pairs in a fixed order
     return *this;
   }
 };

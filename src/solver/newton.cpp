@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <limits>
 
@@ -89,6 +90,21 @@ bool convergedAfterSolve(const NewtonSpec& spec, const Norms& norms, int iterati
       return false;
   }
   return false;
+}
+
+// A contact active set (every point's state and segment) that comes back after having changed
+// is a cycle: Newton on the piecewise smooth contact residual hops between the same few
+// stick/slip, open/closed or segment patterns (period 2 and 3 on the ironing cases, issue 14)
+// and would go on doing so for all its iterations. Full steps do not leave such a cycle; the
+// line search does: the step fails at once and the load stepper retries it with the line search
+// (before, the retry came after maxIterations failed iterations). The retry is the same solve as
+// before, so its iteration count is too; a step that never revisits a set is untouched.
+bool enteredCycle(std::vector<std::uint64_t>& activeSets, const ContactChanges& changes) {
+  const bool changed = changes.state > 0 || changes.segment > 0;
+  const bool seen = changed && std::find(activeSets.begin(), activeSets.end(), changes.signature) !=
+                                   activeSets.end();
+  activeSets.push_back(changes.signature);
+  return seen;
 }
 
 }  // namespace
@@ -230,6 +246,7 @@ NewtonResult Newton::solve(const NewtonStep& step, const NewtonSpec& spec,
       (externalForce_.array() == 0).all() && (prescribedIncrement.array() == 0).all();
   Norms norms;
   double previousResidual = 0, forcing = kForcingMax;
+  std::vector<std::uint64_t> activeSets;  // signature of the active set, per iteration
   for (int iteration = 1; iteration <= spec.maxIterations; ++iteration) {
     Eigen::VectorXd rhs;
     ContactChanges changes;
@@ -244,6 +261,14 @@ NewtonResult Newton::solve(const NewtonStep& step, const NewtonSpec& spec,
       }
     } catch (const StepFailure& failure) {
       return failed(iteration, failure.kind(), failure.what());
+    }
+    if (!spec.lineSearch && enteredCycle(activeSets, changes)) {
+      // The load stepper retries the step with the line search at once (load_stepper.cpp),
+      // instead of after maxIterations iterations of the cycle.
+      return failed(iteration - 1, FailureKind::Diverged,
+                    fmt::format("the contact active set returned at iteration {} to an earlier "
+                                "iteration's (a cycle)",
+                                iteration));
     }
     norms.residual = safeNorm(rhs);
     if (iteration == 1) {

@@ -407,6 +407,46 @@ TEST(ExactTangent, MatchesFiniteDifferencesForAllKindsAndStates) {
   }
 }
 
+// ---- a slave point beyond the master's free edge with edge=fade (issue 14) -------------------
+
+// The fading factor is 1 up to the tolerance, 0 from the end of the band, and C1 at both ends
+// (one-sided differences of the factor vanish there to O(h)).
+TEST(FreeEdgeFactor, FallsFromOneToZeroContinuouslyAcrossTheBand) {
+  const unsigned edge1 = 1u << 1;  // xi1 = 1
+  const auto at = [&](double xi1) { return freeEdgeFactor<double>(Vector2d(xi1, 0.3), edge1); };
+  const double start = 1 + kFreeEdgeTolerance, end = start + kFreeEdgeBand, h = 1e-7;
+  EXPECT_EQ(at(1.0), 1.0);
+  EXPECT_EQ(at(start), 1.0);
+  EXPECT_NEAR(at(start + h), 1.0, 1e-12);
+  EXPECT_NEAR(at(end - h), 0.0, 1e-12);
+  EXPECT_EQ(at(end), 0.0);
+  EXPECT_NEAR(at(start + kFreeEdgeBand / 2), 0.5, 1e-12);               // 1 - 3/4 + 2/8
+  EXPECT_EQ(freeEdgeFactor<double>(Vector2d(1.5, 0.3), 1u << 3), 1.0);  // only free edges count
+}
+
+// NTS, flat master whose edge xi1 = 1 is free, slave node in the band beyond it: the force is a
+// fraction of the full one, and the exact tangent (which differentiates the fading factor through
+// the projection parameter) matches central differences, in stick and in slip.
+TEST(FreeEdgeFactor, ExactTangentMatchesFiniteDifferencesInTheBand) {
+  const Vector3d beyondEdge(1.08, 0.1, -0.002);
+  for (const double slip : {1e-3, 5e-2}) {
+    SCOPED_TRACE(slip);
+    PointCase c = nodeToSegment(flatQuad4(), shape::SurfaceType::Quad4, beyondEdge, 0.3, slip, 0.5);
+    const double excess = c.setup.parameter[0] - 1;
+    ASSERT_GT(excess, kFreeEdgeTolerance + 0.2 * kFreeEdgeBand);
+    ASSERT_LT(excess, kFreeEdgeTolerance + 0.8 * kFreeEdgeBand);
+    const Vector3d full = evaluatePoint(c.setup, c.nodes).force.tail<3>();
+    c.setup.layout.freeEdges = 1u << 1;
+    const PointEvaluation faded = evaluatePoint(c.setup, c.nodes);
+    ASSERT_EQ(faded.response.state, slip > 1e-2 ? ContactState::Slip : ContactState::Stick);
+    const double share = freeEdgeFactor<double>(faded.xi, 1u << 1);
+    EXPECT_GT(share, 0.05);
+    EXPECT_LT(share, 0.95);
+    EXPECT_LT((faded.force.tail<3>() - share * full).norm(), 1e-12 * full.norm());
+    EXPECT_LT(relativeError(tangent(c, TangentMode::Exact, {}), finiteDifferenceTangent(c)), 1e-6);
+  }
+}
+
 // ---- the paper's tangential parts: symmetric in stick, error vanishing with the increment ---
 
 TEST(PaperTangent, StickTangentIsSymmetric) {
