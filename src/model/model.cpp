@@ -91,13 +91,23 @@ void Model::commitStep() {
 ContactChanges Model::takeContactChanges() {
   ContactChanges changes;
   for (auto& pair : contactPairs_) changes += pair->takeChanges();
-  if (group_) {  // each process counted the points it evaluated
-    double counts[3] = {double(changes.state), double(changes.segment), double(changes.active)};
-    group_->sum(counts, 3);
-    changes = {static_cast<int>(counts[0]), static_cast<int>(counts[1]),
-               static_cast<int>(counts[2])};
+  if (!group_) return changes;
+  // Each process counted and fingerprinted the points it evaluated. The counts are summed; the
+  // fingerprints too, modulo 2^64, in 16-bit pieces that double sums carry exactly: the same on
+  // every process (Newton's cycle test must decide alike everywhere), and it comes back exactly
+  // when every process's own active set does.
+  constexpr int kPieces = 4;
+  double values[3 + kPieces] = {double(changes.state), double(changes.segment),
+                                double(changes.active)};
+  for (int k = 0; k < kPieces; ++k)
+    values[3 + k] = double((changes.signature >> (16 * k)) & 0xFFFF);
+  group_->sum(values, 3 + kPieces);
+  ContactChanges total{static_cast<int>(values[0]), static_cast<int>(values[1]),
+                       static_cast<int>(values[2])};
+  for (int k = 0; k < kPieces; ++k) {
+    total.signature += static_cast<std::uint64_t>(values[3 + k]) << (16 * k);
   }
-  return changes;
+  return total;
 }
 
 void Model::restoreStep() {
