@@ -429,6 +429,7 @@ int runCommand(const RunOptions& options) {
     if (writes) std::cerr << error.what() << "\n";
     const SolverStatistics done = stepper.statistics();
     if (writes) {
+      std::cerr << keptStepsMessage(done.steps, observer.writtenSteps(), path);
       writer.close({"input error", done.steps, done.iterations, done.cutbacks,
                     std::chrono::duration<double>(Clock::now() - start).count(), error.what(),
                     observer.linearSolver(), done.linear.krylovIterations,
