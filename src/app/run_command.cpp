@@ -18,6 +18,7 @@
 #include <new>
 #include <sstream>
 
+#include "app/allocation_failure.hpp"
 #include "app/commands.hpp"
 #include "app/progress.hpp"
 #include "app/restart.hpp"
@@ -49,8 +50,8 @@ extern "C" void requestStop(int) {
   ::_exit(kExitInterrupted);
 }
 
-// What did not fit when memory ran out, with the model's size and the memory the process had
-// reached (std::bad_alloc itself says neither).
+// What did not fit when memory ran out, with the model's size, the size asked for, the memory
+// the process had reached and its limit (std::bad_alloc itself says none of these).
 std::string outOfMemoryMessage(const char* during, const Model* model) {
   rusage usage{};
   ::getrusage(RUSAGE_SELF, &usage);
@@ -58,10 +59,9 @@ std::string outOfMemoryMessage(const char* during, const Model* model) {
   if (model)
     text += fmt::format(" ({} nodes, {} elements, {} equations)", model->mesh().numNodes(),
                         model->elementCount(), model->dofMap().numFree());
-  return text + fmt::format(
-                    "; the process had reached {:.2f} GiB; use fewer elements or a "
-                    "machine with more memory",
-                    static_cast<double>(usage.ru_maxrss) / (1 << 20));
+  return text + failedAllocationText() + "; the resident memory of the process had reached " +
+         byteSize(static_cast<double>(usage.ru_maxrss) * 1024) + addressSpaceLimitText() +
+         "; use fewer elements or a machine with more memory";
 }
 
 // Receives the stepper's records: writes them and reports progress.
@@ -234,7 +234,8 @@ SetupError setUp(const RunOptions& options, bool writes, std::unique_ptr<Model>&
   } catch (const OutputError& error) {
     return {kExitIo, std::string("covcontact: error: ") + error.what()};
   } catch (const OutOfMemory& error) {
-    return {kExitOutOfMemory, std::string("covcontact: error: ") + error.what()};
+    return {kExitOutOfMemory,
+            std::string("covcontact: error: ") + error.what() + addressSpaceLimitText()};
   } catch (const std::bad_alloc&) {
     return {kExitOutOfMemory,
             "covcontact: error: " +
@@ -442,6 +443,7 @@ int runCommand(const RunOptions& options) {
     progress.finish();
     if (writes) std::cerr << error.what() << "\n";
     const SolverStatistics done = stepper.statistics();
+    if (writes) std::cerr << keptStepsMessage(done.steps, observer.writtenSteps(), path);
     writer.close({"input error", done.steps, done.iterations, done.cutbacks,
                   rankZeroValue(group, std::chrono::duration<double>(Clock::now() - start).count()),
                   error.what(), observer.linearSolver(), done.linear.krylovIterations,
@@ -461,7 +463,7 @@ int runCommand(const RunOptions& options) {
     progress.finish();
     const SolverStatistics done = stepper.statistics();
     const std::string message = dynamic_cast<const OutOfMemory*>(&error)
-                                    ? std::string(error.what())
+                                    ? error.what() + addressSpaceLimitText()
                                     : outOfMemoryMessage("solving a step", model.get());
     std::cerr << "covcontact: error: " << message << "\n";
     std::cerr << keptStepsMessage(done.steps, observer.writtenSteps(), path);

@@ -134,9 +134,12 @@ KeywordDecl prescribeKeyword() {
               "node's reference position), a plain number, or `table (t,v) (t,v) ...`: "
               "piecewise linear with strictly increasing t, constant beyond its ends. "
               "Components not named stay free. A dof may carry two conditions (overlapping "
-              "sets, or `fix` and `prescribe`) only if both give the same value at t = 0 and "
-              "at every step end and step midpoint of the solve block (a fixed dof: 0); "
-              "otherwise the deck is refused naming both lines.",
+              "sets, or `fix` and `prescribe`) only if both give the same value (a fixed dof: 0) "
+              "at every time the run evaluates them: they are compared at t = 0 and at every "
+              "step end and step midpoint of the solve block before the run (the deck is "
+              "refused naming both lines), and at any other time a cut-back reaches when the "
+              "run gets there (the run stops with the same message and keeps its converged "
+              "steps).",
           .handler = handlePrescribe};
 }
 

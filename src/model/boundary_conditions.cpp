@@ -82,10 +82,29 @@ double BoundaryConditions::conditionValue(const Condition& condition, double t,
   return condition.function < 0 ? 0.0 : (*functions_[condition.function])(t, x);
 }
 
+// The message of two conditions that differ at t, at the later line.
+void BoundaryConditions::refuse(const Overlap& overlap, const Eigen::Vector3d& x, double t,
+                                double first, double second) const {
+  throw InputError(
+      overlap.second.where,
+      fmt::format("{} '{}': {} of {} at ({}, {}, {}) is also {} by the line at {}, which "
+                  "gives {} at t = {} where this line gives {}; two conditions on one dof "
+                  "must give the same value at every time the run evaluates them: t = 0, every "
+                  "step end and step midpoint (compared before the run) and any other time a "
+                  "cut-back reaches (compared there; a fixed dof: 0)",
+                  conditionKeyword(overlap.second.function), overlap.set,
+                  kComponentNames[overlap.dof % 3], overlap.nodeName, x[0], x[1], x[2],
+                  overlap.first.function < 0 ? "fixed" : "prescribed", overlap.first.where.str(),
+                  first, t, second));
+}
+
 // One rule for every pair of conditions on a dof (fix + fix, fix + prescribe 0, the same
 // prescribed motion from overlapping sets): the same value at every time the run can ask for,
-// else refused. Before, fix + fix was accepted and fix + `prescribe ... 0` refused.
-void BoundaryConditions::checkOverlaps(const ProblemSpec& spec, const Mesh& mesh) const {
+// else refused. Before, fix + fix was accepted and fix + `prescribe ... 0` refused. Compared here
+// at the times every run reaches, so that `check` refuses the deck; the overlaps kept are
+// compared again at each time the run evaluates (checkOverlapsAt): a cut-back by another factor
+// than 0.5, or a second one, lands on times not listed here.
+void BoundaryConditions::checkOverlaps(const ProblemSpec& spec, const Mesh& mesh) {
   if (overlaps_.empty()) return;
   const auto dependsOnPosition = [&](const Condition& condition) {
     return condition.function >= 0 && functions_[condition.function]->dependsOnPosition();
@@ -106,9 +125,10 @@ void BoundaryConditions::checkOverlaps(const ProblemSpec& spec, const Mesh& mesh
                                                  double{kMaxCheckedStepsPerPhase})));
   }
   std::set<std::pair<int, int>> comparedPairs;  // time-only pairs give the same at every node
+  std::vector<Overlap> kept;
   std::vector<double> first;
   std::vector<double> second;
-  for (const Overlap& overlap : overlaps_) {
+  for (Overlap& overlap : overlaps_) {
     const bool position = dependsOnPosition(overlap.first) || dependsOnPosition(overlap.second);
     if (!position &&
         !comparedPairs.insert({overlap.first.function, overlap.second.function}).second) {
@@ -117,6 +137,9 @@ void BoundaryConditions::checkOverlaps(const ProblemSpec& spec, const Mesh& mesh
     const std::vector<double>& times = position ? positionTimes : timeOnlyTimes;
     const int node = overlap.dof / 3;
     const Eigen::Vector3d x = mesh.coordinates.col(node);
+    overlap.nodeName = static_cast<std::size_t>(node) < mesh.gmshNodeTags.size()
+                           ? fmt::format("gmsh node {}", mesh.gmshNodeTags[node])
+                           : fmt::format("node {}", node);
     first.resize(times.size());
     second.resize(times.size());
     double scale = 0;
@@ -126,21 +149,27 @@ void BoundaryConditions::checkOverlaps(const ProblemSpec& spec, const Mesh& mesh
       scale = std::max({scale, std::abs(first[i]), std::abs(second[i])});
     }
     for (std::size_t i = 0; i < times.size(); ++i) {
-      if (std::abs(first[i] - second[i]) <= kAgreement * scale) continue;
-      const std::string nodeName = static_cast<std::size_t>(node) < mesh.gmshNodeTags.size()
-                                       ? fmt::format("gmsh node {}", mesh.gmshNodeTags[node])
-                                       : fmt::format("node {}", node);
-      throw InputError(
-          overlap.second.where,
-          fmt::format("{} '{}': {} of {} at ({}, {}, {}) is also {} by the line at {}, which "
-                      "gives {} at t = {} where this line gives {}; two conditions on one dof "
-                      "must give the same value at t = 0, at every step time and at every step "
-                      "midpoint (a fixed dof: 0)",
-                      conditionKeyword(overlap.second.function), overlap.set,
-                      kComponentNames[overlap.dof % 3], nodeName, x[0], x[1], x[2],
-                      overlap.first.function < 0 ? "fixed" : "prescribed",
-                      overlap.first.where.str(), first[i], times[i], second[i]));
+      if (std::abs(first[i] - second[i]) > kAgreement * scale) {
+        refuse(overlap, x, times[i], first[i], second[i]);
+      }
     }
+    overlap.scale = scale;
+    kept.push_back(std::move(overlap));
+  }
+  overlaps_ = std::move(kept);
+}
+
+// The same comparison at a time the run evaluates. Round-off is measured against the largest
+// value the two took at the compared times as well (a motion through 0 at t differs there by a
+// few ulps of its amplitude, not of its value at t). Costs at most one more evaluation per
+// prescribed dof and time, as many as prescribedValues() itself.
+void BoundaryConditions::checkOverlapsAt(double t, const Eigen::Matrix3Xd& reference) const {
+  for (const Overlap& overlap : overlaps_) {
+    const Eigen::Vector3d x = reference.col(overlap.dof / 3);
+    const double first = conditionValue(overlap.first, t, x);
+    const double second = conditionValue(overlap.second, t, x);
+    const double scale = std::max({overlap.scale, std::abs(first), std::abs(second)});
+    if (std::abs(first - second) > kAgreement * scale) refuse(overlap, x, t, first, second);
   }
 }
 
@@ -163,8 +192,6 @@ void BoundaryConditions::build(const ProblemSpec& spec, const Mesh& mesh) {
     }
   }
   checkOverlaps(spec, mesh);
-  overlaps_.clear();
-  overlaps_.shrink_to_fit();
   for (const LoadSpec& load : spec.loads) {
     const NodeSet& set = requireNodeSet(mesh, load.set, load.where, "load");
     const double scale = load.total ? 1.0 / static_cast<double>(set.nodes.size()) : 1.0;
@@ -193,6 +220,7 @@ void BoundaryConditions::prescribedValues(double t, const DofMap& dofs,
       values[p] = (*functions_[condition.function])(t, reference.col(dof / 3));
     }
   }
+  checkOverlapsAt(t, reference);
 }
 
 void BoundaryConditions::externalForces(double t, const Eigen::Matrix3Xd& reference,

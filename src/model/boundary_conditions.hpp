@@ -25,7 +25,9 @@ class BoundaryConditions {
 
   // Dofs (3 * node + component) carrying a Dirichlet condition.
   std::vector<bool> constrainedDofs(int numNodes) const;
-  // Values of the prescribed dofs in DofMap::prescribedDofs() order.
+  // Values of the prescribed dofs in DofMap::prescribedDofs() order. The two conditions of every
+  // doubly constrained dof are compared again at t (a cut-back can reach a time build() never
+  // compared): InputError, as in build(), if they differ there.
   void prescribedValues(double t, const DofMap& dofs, const Eigen::Matrix3Xd& reference,
                         Eigen::VectorXd& values) const;
   void externalForces(double t, const Eigen::Matrix3Xd& reference, Eigen::VectorXd& force) const;
@@ -40,21 +42,29 @@ class BoundaryConditions {
     int function = 0;
     double scale = 1;  // 1 / (nodes of the set) for `total` loads
   };
-  // A second condition on a dof that already has one, compared once all are known.
+  // A second condition on a dof that already has one, compared once all are known and again at
+  // every time the run evaluates the conditions.
   struct Overlap {
     int dof = 0;
     Condition first;
     Condition second;
-    std::string set;  // the second condition's set
+    std::string set;       // the second condition's set
+    std::string nodeName;  // "gmsh node N", for the message
+    double scale = 0;      // the largest |value| of both at the times build() compared
   };
   int addFunction(const FunctionSpec& spec);
   void constrain(int dof, Condition condition, const std::string& set);
   double conditionValue(const Condition& condition, double t, const Eigen::Vector3d& x) const;
-  void checkOverlaps(const ProblemSpec& spec, const Mesh& mesh) const;
+  void checkOverlaps(const ProblemSpec& spec, const Mesh& mesh);
+  void checkOverlapsAt(double t, const Eigen::Matrix3Xd& reference) const;
+  [[noreturn]] void refuse(const Overlap& overlap, const Eigen::Vector3d& x, double t, double first,
+                           double second) const;
 
   std::vector<std::unique_ptr<ScalarFunction>> functions_;
   std::unordered_map<int, Condition> conditions_;  // by dof
-  std::vector<Overlap> overlaps_;                  // while building
+  // The overlaps checked at run time: one per pair of time-only conditions (the same at every
+  // node), one per dof where a condition depends on the position.
+  std::vector<Overlap> overlaps_;
   std::vector<NodalLoad> loads_;
 };
 

@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
+#include <mutex>
 #include <stdexcept>
 
 #include "common/errors.hpp"
@@ -54,6 +56,65 @@ int orderingCode(FillOrdering ordering) {
   return CHOLMOD_AMD;
 }
 
+// OpenBLAS on x86-64 (Debian's libopenblas0-serial 0.3.21) maps a work buffer of BUFFER_SIZE =
+// 128 MiB plus a page at its first level-3 or LAPACK call and keeps it for the process; when
+// that mapping fails its blas_memory_alloc tries again forever. Probing with a little more
+// address space than that tells whether the buffer would fit; another BLAS build with a larger
+// buffer would escape the probe (then the hang under a tight limit is back).
+constexpr std::size_t kBlasWorkspaceProbe = (std::size_t{129} << 20);
+
+}  // namespace
+
+void reserveBlasWorkspace() {
+  static std::mutex mutex;
+  static bool reserved = false;
+  const std::lock_guard<std::mutex> lock(mutex);
+  if (reserved) return;
+  void* probe = std::malloc(kBlasWorkspaceProbe);
+  if (!probe) {
+    throw OutOfMemory(fmt::format(
+        "the BLAS library's work buffer ({} MiB of address space, taken at the first "
+        "factorization) does not fit in the memory left after building the model; use fewer "
+        "elements or a machine with more memory",
+        kBlasWorkspaceProbe >> 20));
+  }
+  std::free(probe);
+  // A 1 x 1 supernodal Cholesky factorization: CHOLMOD calls LAPACK's dpotrf on its supernode,
+  // which takes the buffer while the probe says it fits.
+  cholmod_common common{};
+  cholmod_start(&common);
+  common.print = 0;
+  common.supernodal = CHOLMOD_SUPERNODAL;
+  int columnStarts[2] = {0, 1};
+  int rowIndices[1] = {0};
+  double values[1] = {1.0};
+  cholmod_sparse one{};
+  one.nrow = one.ncol = one.nzmax = 1;
+  one.p = columnStarts;
+  one.i = rowIndices;
+  one.x = values;
+  one.stype = 1;
+  one.itype = CHOLMOD_INT;
+  one.xtype = CHOLMOD_REAL;
+  one.dtype = CHOLMOD_DOUBLE;
+  one.sorted = 1;
+  one.packed = 1;
+  cholmod_factor* factor = cholmod_analyze(&one, &common);
+  if (factor) cholmod_factorize(&one, factor, &common);
+  const int status = common.status;
+  if (factor) cholmod_free_factor(&factor, &common);
+  cholmod_finish(&common);
+  if (status == CHOLMOD_OUT_OF_MEMORY) {
+    throw OutOfMemory(
+        "CHOLMOD ran out of memory factoring a 1 x 1 matrix before the first "
+        "factorization: almost no memory is left after building the model; use "
+        "fewer elements or a machine with more memory");
+  }
+  reserved = true;
+}
+
+namespace {
+
 class CholmodSolver final : public LinearSolver {
  public:
   explicit CholmodSolver(FillOrdering ordering) {
@@ -79,10 +140,16 @@ class CholmodSolver final : public LinearSolver {
   // integers): a limit of the machine or the library, said with the sizes involved.
   void throwIfOutOfMemory(const char* phase, const SparseMatrix& matrix) const {
     if (common_.status != CHOLMOD_OUT_OF_MEMORY && common_.status != CHOLMOD_TOO_LARGE) return;
+    // A supernodal factor stores xsize values (the supernodes' dense blocks, fill included) and
+    // ssize row indices, both known after the analysis; otherwise lnz values and indices.
+    const double bytes = symbolic_ && symbolic_->is_super
+                             ? 8.0 * static_cast<double>(symbolic_->xsize) +
+                                   4.0 * static_cast<double>(symbolic_->ssize)
+                             : 12.0 * common_.lnz;
     const std::string estimate =
         symbolic_ && common_.lnz > 0
             ? fmt::format("; the analysis estimated {:.3g} nonzeros in the factor, {:.2f} GiB",
-                          common_.lnz, common_.lnz * 12.0 / (1u << 30))
+                          common_.lnz, bytes / (1u << 30))
             : std::string();
     throw OutOfMemory(fmt::format(
         "CHOLMOD {} in the {} of the {} x {} tangent ({} nonzeros){}: the Cholesky factor of "
@@ -93,6 +160,7 @@ class CholmodSolver final : public LinearSolver {
   }
 
   void analyzePattern(const SparseMatrix& matrix) override {
+    reserveBlasWorkspace();
     const auto start = std::chrono::steady_clock::now();
     if (factor_) cholmod_free_factor(&factor_, &common_);
     if (symbolic_) cholmod_free_factor(&symbolic_, &common_);

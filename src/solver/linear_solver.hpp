@@ -129,6 +129,11 @@ std::unique_ptr<LinearSolver> makeCholmodSolver(FillOrdering ordering = kDefault
 // Throws std::invalid_argument for NestedDissection.
 std::unique_ptr<LinearSolver> makeUmfpackSolver(FillOrdering ordering = kDefaultOrdering);
 
+// Makes the BLAS library take its work buffer now, once per process, or throws OutOfMemory if
+// the address space left cannot hold it (OpenBLAS retries a failed allocation of that buffer
+// forever: a hang under `ulimit -v`). CHOLMOD and UMFPACK call it before their first analysis.
+void reserveBlasWorkspace();
+
 // PETSc backends (solver/petsc_solver.cpp; PETSc and MPI are initialized on first use).
 enum class PetscMethod { Mumps, SuperluDist, BoomerAmg, Gamg };
 std::unique_ptr<LinearSolver> makePetscSolver(PetscMethod method);

@@ -49,6 +49,7 @@ class UmfpackSolver final : public LinearSolver {
 
   void analyzePattern(const SparseMatrix& matrix) override {
     checkShape(matrix);
+    reserveBlasWorkspace();
     const auto start = std::chrono::steady_clock::now();
     release();
     copyIndices(matrix);
@@ -60,6 +61,10 @@ class UmfpackSolver final : public LinearSolver {
     if (status != UMFPACK_OK) {
       throw std::runtime_error(fmt::format("UMFPACK analysis failed (status {})", status));
     }
+    // The analysis's own estimates, kept for an out-of-memory message of the factorization
+    // (which overwrites info_).
+    factorEstimate_ = info_[UMFPACK_NUMERIC_SIZE_ESTIMATE] * info_[UMFPACK_SIZE_OF_UNIT];
+    peakEstimate_ = info_[UMFPACK_PEAK_MEMORY_ESTIMATE] * info_[UMFPACK_SIZE_OF_UNIT];
     size_ = rows(matrix);
     ++statistics_.analyses;
     statistics_.analysisSeconds += secondsSince(start);
@@ -144,12 +149,30 @@ class UmfpackSolver final : public LinearSolver {
     rowIndices_.assign(matrix.innerIndexPtr(), matrix.innerIndexPtr() + matrix.nonZeros());
   }
   // Memory is a limit of the machine, not a step that a smaller load increment could fix.
+  // The ordering (METIS, or AMD) reports only failure to UMFPACK (status -18); on a matrix
+  // UMFPACK has accepted that failure is an allocation, seen under `ulimit -v` in the analysis.
   void throwIfOutOfMemory(SuiteSparse_long status, const char* phase, const SparseMatrix& matrix) {
+    if (status == UMFPACK_ERROR_ordering_failed) {
+      throw OutOfMemory(fmt::format(
+          "UMFPACK's fill-reducing ordering failed in the {} of the {} x {} tangent ({} "
+          "nonzeros; status {}), which on a valid tangent means that it ran out of memory: "
+          "the LU factor of this model does not fit; use fewer elements or a machine with "
+          "more memory",
+          phase, matrix.rows(), matrix.cols(), matrix.nonZeros(), status));
+    }
     if (status != UMFPACK_ERROR_out_of_memory) return;
+    constexpr double kGiB = 1024.0 * 1024.0 * 1024.0;
+    const std::string estimate =
+        symbolic_ && factorEstimate_ > 0
+            ? fmt::format(
+                  "; the analysis estimated the LU factor at {:.2f} GiB and the peak "
+                  "memory of the factorization at {:.2f} GiB (an upper bound)",
+                  factorEstimate_ / kGiB, peakEstimate_ / kGiB)
+            : std::string();
     throw OutOfMemory(fmt::format(
-        "UMFPACK ran out of memory in the {} of the {} x {} tangent ({} nonzeros); the LU "
-        "factor of this model does not fit: use fewer elements or a machine with more memory",
-        phase, matrix.rows(), matrix.cols(), matrix.nonZeros()));
+        "UMFPACK ran out of memory in the {} of the {} x {} tangent ({} nonzeros){}: the LU "
+        "factor of this model does not fit; use fewer elements or a machine with more memory",
+        phase, matrix.rows(), matrix.cols(), matrix.nonZeros(), estimate));
   }
 
   double control_[UMFPACK_CONTROL];
@@ -159,6 +182,8 @@ class UmfpackSolver final : public LinearSolver {
   const SparseMatrix* matrix_ = nullptr;
   std::vector<SuiteSparse_long> columnStarts_, rowIndices_;
   int size_ = -1;
+  double factorEstimate_ = 0;  // bytes, from the last analysis
+  double peakEstimate_ = 0;
 };
 
 }  // namespace

@@ -19,6 +19,7 @@
 Usage: check_mpi_runs.py --covcontact BIN --mpirun MPIRUN --source DIR --scratch DIR --case C
 """
 import argparse
+import fcntl
 import os
 import re
 import shutil
@@ -214,6 +215,23 @@ def restart_case(args):
               f"run (largest difference {worst:.1e})")
 
 
+def wait_until_unlocked(path, seconds=60):
+    """Waits until no process holds the writer's lock on `path`. A process being ended still
+    holds its files for a moment after its command line has gone from /proc (the kernel frees
+    its memory first): with ASan's terabytes of mappings that moment lasted long enough for the
+    reader to meet the lock (h5py: 'unable to lock file')."""
+    deadline = time.monotonic() + seconds
+    with open(path, "rb") as stream:
+        while True:
+            try:
+                fcntl.flock(stream, fcntl.LOCK_SH | fcntl.LOCK_NB)
+                fcntl.flock(stream, fcntl.LOCK_UN)
+                return
+            except BlockingIOError:
+                check(time.monotonic() < deadline, f"{path} still locked {seconds} s after the run")
+                time.sleep(0.05)
+
+
 def errors_case(args):
     good = os.path.join(args.source, "tests/regression/paper/decks/6_1b_short_full.deck")
     serial, two = run(args, 1, "check", good), run(args, 2, "check", good)
@@ -252,6 +270,7 @@ def errors_case(args):
     check(code != 0, "the run survived the SIGKILL of a process")
     leftover = subprocess.run(["pgrep", "-f", killed], capture_output=True, text=True).stdout
     check(not leftover.strip(), f"processes left after the kill: {leftover}")
+    wait_until_unlocked(killed)
     with h5py.File(killed, "r") as h5:
         stored = [int(h5["steps"][name].attrs["step"]) for name in step_names(h5)]
         for name in step_names(h5):

@@ -18,11 +18,25 @@
 --case interrupt: an interrupted run with output_every says how many of its converged steps are
   written (it said N were kept while the file held none); a second SIGINT stops at once (exit 4)
   and the steps written before stay readable.
+--case out_of_memory: input/stress/out_of_memory_in_contact.deck run under a real address-space
+  limit (RLIMIT_AS, as `ulimit -v` or `prlimit --as` set it). The peaks of its first two steps
+  (CHOLMOD) and of step 3 (UMFPACK, in contact) are measured first (VmPeak of unlimited runs on
+  one thread). A limit half-way between them: exit 8, a message naming UMFPACK (its ordering
+  in the analysis, or the factorization with the analysis's estimate of the factor), the
+  tangent's size and the limit, "the 2 converged steps are kept", and a file closed with outcome
+  "out of memory" whose 2 steps equal those of the unlimited run bit for bit. Then limits every
+  1/12 of the way from `check`'s peak to that limit, so that memory runs out in every part of
+  the run that
+  allocates (building the model, the BLAS work buffer, CHOLMOD, UMFPACK's ordering and
+  factorization): each run ends within the timeout with exit 8, a message saying what does not
+  fit and the limit, never an internal error, a crash or a hang; its file, when it has one,
+  holds the converged steps it reports.
 
 Usage: check_files.py --covcontact BIN --source DIR --scratch DIR --case C
 """
 import argparse
 import os
+import resource
 import shutil
 import signal
 import subprocess
@@ -32,7 +46,7 @@ import time
 import h5py
 
 COMMAND_TIMEOUT_S = 120
-EXIT_OK, EXIT_USAGE, EXIT_INTERRUPTED, EXIT_IO = 0, 1, 4, 6
+EXIT_OK, EXIT_USAGE, EXIT_INTERRUPTED, EXIT_IO, EXIT_OUT_OF_MEMORY = 0, 1, 4, 6, 8
 CORE = os.path.join("input", "verification", "core")
 SHORT_DECK = "neohooke_bending.deck"  # 4 steps, includes neohooke_bending_model.inc
 SHORT_STEPS = 4
@@ -288,18 +302,168 @@ def interrupt_case(args):
           "the file readable")
 
 
+# One thread everywhere: no libgomp or OpenBLAS thread stacks and arenas (which made lower limits
+# end in libgomp's "Thread creation failed" abort), and the variables set beforehand so that the
+# command does not re-execute itself to set them.
+ONE_THREAD = {"OMP_WAIT_POLICY": "passive", "OMP_THREAD_LIMIT": "1", "OPENBLAS_NUM_THREADS": "1"}
+OOM_DECK = "out_of_memory_in_contact.deck"
+OOM_STEPS_APART = 2  # steps 1-2: the cube hangs free; step 3 touches the plane
+
+
+def run_measured(args, command, limit=None):
+    """Runs `covcontact COMMAND...` on one thread; returns (result, VmPeak in bytes) - the
+    largest address space the process had, polled from /proc, which is what RLIMIT_AS limits."""
+    def limit_address_space():
+        resource.setrlimit(resource.RLIMIT_AS, (limit, limit))
+
+    process = subprocess.Popen([args.covcontact, *command], stdout=subprocess.PIPE,
+                               stderr=subprocess.PIPE, text=True,
+                               env=dict(os.environ, **ONE_THREAD),
+                               preexec_fn=limit_address_space if limit else None)
+    peak = 0
+    started = time.time()
+    while process.poll() is None:
+        if time.time() - started > COMMAND_TIMEOUT_S:
+            process.kill()
+            fail(f"{' '.join(command)} under a limit of {limit}: no end within "
+                 f"{COMMAND_TIMEOUT_S} s (a hang)")
+        try:
+            with open(f"/proc/{process.pid}/status") as status:
+                for line in status:
+                    if line.startswith("VmPeak:"):
+                        peak = max(peak, int(line.split()[1]) * 1024)
+        except OSError:
+            pass  # the process has just ended
+        time.sleep(0.005)
+    stdout, stderr = process.communicate(timeout=COMMAND_TIMEOUT_S)
+    return subprocess.CompletedProcess(process.args, process.returncode, stdout, stderr), peak
+
+
+def byte_size(size):
+    """As covcontact writes a size (app/allocation_failure.cpp)."""
+    if size >= 1 << 30:
+        return f"{size / (1 << 30):.2f} GiB"
+    return f"{size / (1 << 20):.1f} MiB" if size >= 1 << 20 else f"{size} bytes"
+
+
+def check_out_of_memory_file(results, stderr, what):
+    """The file of a run that ran out of memory: closed with that outcome and the message, and
+    holding the converged steps that the run reports as kept. Returns their number."""
+    message = stderr.split("covcontact: error: ", 1)[1].splitlines()[0]
+    if not os.path.exists(results):  # memory ran out before the file was created
+        check("converged steps" not in stderr, f"{what}: steps reported kept, no file")
+        return 0
+    kept = [line for line in stderr.splitlines() if "converged steps are kept in" in line]
+    check(len(kept) == 1, f"{what}: no line saying which converged steps are kept:\n{stderr}")
+    steps = int(kept[0].split("the ", 1)[1].split()[0])
+    with h5py.File(results, "r") as h5:
+        summary = h5["summary"].attrs
+        check(summary["outcome"] == "out of memory" and summary["steps"] == steps,
+              f"{what}: summary outcome {summary['outcome']!r}, {summary['steps']} steps, "
+              f"{steps} reported")
+        check(summary["message"] == message, f"{what}: summary message {summary['message']!r}")
+        check(len(h5["steps"]) == steps, f"{what}: {len(h5['steps'])} step groups, {steps} kept")
+    return steps
+
+
+def out_of_memory_case(args):
+    decks = os.path.join(args.scratch, "input", "stress")
+    os.makedirs(decks)
+    os.makedirs(os.path.join(args.scratch, "meshes"))
+    shutil.copy(os.path.join(args.source, "meshes", "cube.geo"),
+                os.path.join(args.scratch, "meshes"))
+    deck = os.path.join(decks, OOM_DECK)
+    shutil.copy(os.path.join(args.source, "input", "stress", OOM_DECK), deck)
+    with open(deck) as stream:
+        text = stream.read()
+    check("steps 3 dt=1" in text, f"{OOM_DECK} no longer has 'steps 3 dt=1'")
+    apart_deck = os.path.join(decks, "apart.deck")
+    with open(apart_deck, "w") as stream:
+        stream.write(text.replace("steps 3 dt=1", f"steps {OOM_STEPS_APART} dt=1"))
+
+    result, check_peak = run_measured(args, ["check", deck])
+    check(result.returncode == EXIT_OK, f"check: exit {result.returncode}\n{result.stderr}")
+    apart = os.path.join(args.scratch, "apart.h5")
+    result, apart_peak = run_measured(args, ["run", apart_deck, "-o", apart, "--threads", "1"])
+    check(result.returncode == EXIT_OK, f"steps 1-2 unlimited: exit {result.returncode}\n"
+          f"{result.stderr}")
+    full = os.path.join(args.scratch, "full.h5")
+    result, full_peak = run_measured(args, ["run", deck, "-o", full, "--threads", "1"])
+    check(result.returncode == EXIT_OK, f"unlimited run: exit {result.returncode}\n{result.stderr}")
+    mib = 1 << 20
+    # 185 MiB when measured. Half-way, the limit is ~90 MiB from either peak, so that the outcome
+    # depends on the factor, not on the libraries' sizes. (UMFPACK's peak is above its need: it
+    # asks for more than its estimate first and settles for less; it completes from ~545 MiB.)
+    check(full_peak - apart_peak >= 128 * mib,
+          f"step 3 needs only {(full_peak - apart_peak) / mib:.0f} MiB more than steps 1-2 "
+          f"({apart_peak / mib:.0f} -> {full_peak / mib:.0f} MiB): the deck no longer tests this")
+    limit = (apart_peak + full_peak) // 2 // 4096 * 4096
+    print(f"peaks: check {check_peak / mib:.0f} MiB, steps 1-2 {apart_peak / mib:.0f} MiB, "
+          f"with step 3 {full_peak / mib:.0f} MiB; limit {limit / mib:.0f} MiB")
+
+    limited = os.path.join(args.scratch, "limited.h5")
+    result, _ = run_measured(args, ["run", deck, "-o", limited, "--threads", "1"], limit)
+    check(result.returncode == EXIT_OUT_OF_MEMORY,
+          f"run under the limit: exit {result.returncode}, expected {EXIT_OUT_OF_MEMORY}\n"
+          f"{result.stdout}{result.stderr}")
+    for fragment in ("covcontact: error: UMFPACK", " 13872 x 13872 tangent (",
+                     "the LU factor of this model does not fit",
+                     f"the address space of the process is limited to {byte_size(limit)}",
+                     f"the {OOM_STEPS_APART} converged steps are kept in {limited}"):
+        check(fragment in result.stderr, f"stderr lacks {fragment!r}:\n{result.stderr}")
+    # Measured: the ordering of the analysis fails up to ~495 MiB, the factorization above.
+    if "in the factorization" in result.stderr:
+        check("; the analysis estimated the LU factor at " in result.stderr,
+              f"no estimate of the factor:\n{result.stderr}")
+    check(check_out_of_memory_file(limited, result.stderr, "limited run") == OOM_STEPS_APART,
+          "the limited run does not keep steps 1-2")
+    with h5py.File(limited, "r") as h5, h5py.File(apart, "r") as reference:
+        names = sorted(h5["steps"].keys())
+        check(names == sorted(reference["steps"].keys()),
+              f"step groups {names}, expected those of the unlimited run")
+        for name in names:
+            for field in ("displacement", "set_reactions"):
+                kept, expected = h5["steps"][name][field][...], reference["steps"][name][field][...]
+                check(kept.shape == expected.shape and (kept == expected).all(),
+                      f"step {name}: {field} differs from the unlimited run")
+    print(f"under {limit / mib:.0f} MiB: exit {EXIT_OUT_OF_MEMORY}, "
+          f"{result.stderr.split('covcontact: error: ', 1)[1].splitlines()[0]}")
+    print(f"steps 1-{OOM_STEPS_APART} kept, equal to the unlimited run bit for bit")
+
+    # Memory running out anywhere: from just under check's peak (building the model) to the
+    # limit above (UMFPACK in step 3).
+    low, high = check_peak - 8 * mib, limit
+    for k in range(12):
+        limit = (low + (high - low) * k // 12) // 4096 * 4096
+        results = os.path.join(args.scratch, f"sweep_{k}.h5")
+        result, _ = run_measured(args, ["run", deck, "-o", results, "--threads", "1"], limit)
+        what = f"limit {limit / mib:.0f} MiB"
+        check(result.returncode == EXIT_OUT_OF_MEMORY,
+              f"{what}: exit {result.returncode}, expected {EXIT_OUT_OF_MEMORY}\n"
+              f"{result.stdout}{result.stderr}")
+        check("covcontact: error: " in result.stderr and "internal error" not in result.stderr,
+              f"{what}: no message or an internal error:\n{result.stderr}")
+        message = result.stderr.split("covcontact: error: ", 1)[1].splitlines()[0]
+        check(("does not fit" in message or "out of memory while" in message) and
+              f"limited to {byte_size(limit)} (ulimit -v)" in message,
+              f"{what}: the message does not say what did not fit, or the limit:\n{message}")
+        steps = check_out_of_memory_file(results, result.stderr, what)
+        print(f"{what}: exit 8 after {steps} steps: {message[:110]}")
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("--covcontact", required=True)
     parser.add_argument("--source", required=True, help="the source directory")
     parser.add_argument("--scratch", required=True, help="working directory (emptied first)")
     parser.add_argument("--case", required=True,
-                        choices=["inputs", "concurrent", "sigpipe", "unreadable", "interrupt"])
+                        choices=["inputs", "concurrent", "sigpipe", "unreadable", "interrupt",
+                                 "out_of_memory"])
     args = parser.parse_args()
     shutil.rmtree(args.scratch, ignore_errors=True)
     os.makedirs(args.scratch)
     {"inputs": inputs_case, "concurrent": concurrent_case, "sigpipe": sigpipe_case,
-     "unreadable": unreadable_case, "interrupt": interrupt_case}[args.case](args)
+     "unreadable": unreadable_case, "interrupt": interrupt_case,
+     "out_of_memory": out_of_memory_case}[args.case](args)
 
 
 if __name__ == "__main__":

@@ -18,6 +18,9 @@ TEST(BadInput, ExpressionThatIsNotFiniteAtRunTimeStopsWithExitCode2KeepingTheFir
   EXPECT_EQ(result.exitCode, kExitInput) << result.error;
   EXPECT_NE(result.error.find("expression_not_finite.deck:10:"), std::string::npos) << result.error;
   EXPECT_NE(result.error.find("is not finite at t = 2"), std::string::npos) << result.error;
+  // ... and says that the converged step is kept (it did not).
+  EXPECT_NE(result.error.find("the 1 converged steps are kept in run.h5"), std::string::npos)
+      << result.error;
   const ResultsReader reader(directory + "/run.h5");
   ASSERT_EQ(reader.steps().size(), 1u);
   EXPECT_EQ(reader.steps()[0].time, 1.0);

@@ -152,6 +152,42 @@ TEST(ModelDoubleConditions, MotionsDifferingOnlyBetweenStepEndsAreRefused) {
       << message;
 }
 
+// Two motions that agree at every time compared before the run (t = 0, 0.5, 1: sin(2 pi t) = 0)
+// but not at 0.3, where a cut-back by the factor 0.3 lands: the full step needs more than 4
+// Newton iterations (maxit=4), so it is cut back to t = 0.3. Before, the run went on there with
+// the first line's value and ended with exit 0 (4 steps, 1 cut-back); now the conditions are
+// compared again at every time the run evaluates them, and it stops at t = 0.3 naming both.
+TEST(ModelDoubleConditions, ACutBackTimeNotComparedBeforeTheRunIsComparedWhenReached) {
+  const std::string deck = virtualPath("cutback.deck");
+  const std::string text =
+      "mesh \"../../../meshes/cube_boundary.geo\" n=2 distort=0.5\n"
+      "material m svk E=100 nu=0.3\n"
+      "elements cube hex8 material=m\n"
+      "fix all uz\n"
+      "fix xmin ux\n"
+      "fix ymin uy\n"
+      "prescribe xmax ux \"0.2*t\"\n"
+      "prescribe xmax ux \"0.2*t + 0.01*sin(2*_pi*t)\"\n"
+      "solve\n"
+      "  steps 1 dt=1 maxit=4 cutback_factor=0.3\n"
+      "end\n";
+  std::string message;
+  try {
+    runDeckText(text, deck);
+    ADD_FAILURE() << "the run went through t = 0.3 with two different values of one dof";
+  } catch (const InputError& error) {
+    message = error.what();
+  }
+  EXPECT_NE(message.find(deck + ":8:1: error: prescribe 'xmax': ux of gmsh node "),
+            std::string::npos)
+      << message;
+  // 0.2 * 0.3 against 0.06 + 0.01 sin(0.6 pi) = 0.0695105652.
+  EXPECT_NE(message.find("is also prescribed by the line at " + deck +
+                         ":7:1, which gives 0.06 at t = 0.3 where this line gives 0.069510565"),
+            std::string::npos)
+      << message;
+}
+
 // The times compared: t = 0, every step end and midpoint, bit for bit as the load stepper
 // computes them (phase start + k dt); a long phase is thinned to evenly spaced steps and its end.
 TEST(ModelDoubleConditions, CheckedTimesAreTheStepEndsAndMidpoints) {
