@@ -98,6 +98,24 @@ def compare_steps(reference_path, results_path, first_step=1):
     return len(names), worst
 
 
+ENERGIES = ("external_work", "strain_energy", "contact_energy", "dissipation")
+
+
+def compare_energy(reference_path, results_path):
+    """The energy account of every step (attributes every process writes alike) against the
+    serial run's, each quantity to 1e-8 of its largest magnitude over the run."""
+    with h5py.File(reference_path, "r") as reference, h5py.File(results_path, "r") as results:
+        names = step_names(reference)
+        for quantity in ENERGIES:
+            want = np.array([reference["steps"][n]["energy"].attrs[quantity] for n in names])
+            got = np.array([results["steps"][n]["energy"].attrs[quantity] for n in names])
+            scale = max(np.abs(want).max(), 1e-300)
+            error = np.abs(got - want).max() / scale
+            check(error <= TOLERANCE, f"{results_path}: energy {quantity} differs by {error:.2e}")
+            check(scale > 1e-300 or quantity == "dissipation", f"energy {quantity} is zero")
+    print(f"energy account of {len(names)} steps as serial ({', '.join(ENERGIES)})")
+
+
 def layout_of(path):
     """Every object of a results file: path -> (kind, shape, dtype, sorted attribute names)."""
     objects = {}
@@ -153,6 +171,7 @@ def crossing_case(args):
           f"--newton-log contact counts differ from the serial run's:\n{distributed_log[:20]}\n"
           f"serial:\n{serial_log[:20]}")
     same_layout(serial, distributed)
+    compare_energy(serial, distributed)
     moved = [line for line in result.stdout.splitlines()
              if line.startswith("contact points whose master segment moved")]
     check(len(moved) == 1, f"no line on master segments changing process:\n{result.stdout}")
