@@ -137,11 +137,28 @@ TangentSolver::Backend& TangentSolver::mumpsDirect() {
   return mumpsDirect_;
 }
 
+bool TangentSolver::autoPrefersMumps() {
+  if (method_ != LinearSolverSpec::Method::Auto || size_ < kUnsymmetricMumpsBreakEven ||
+      mumpsUnavailable_) {
+    return false;
+  }
+  // MUMPS is only faster here: when PETSc cannot be loaded or started (a build without it, or
+  // too little memory left to map its libraries and start MPI), UMFPACK solves instead.
+  try {
+    mumpsDirect();
+    return true;
+  } catch (const std::runtime_error& error) {
+    mumpsUnavailable_ = true;
+    if (notify_) notify_(fmt::format("{}; unsymmetric systems go to UMFPACK", error.what()));
+    return false;
+  }
+}
+
 std::string TangentSolver::directSolvers() const {
   if (distributed_) return "MUMPS";
   if (method_ == LinearSolverSpec::Method::Umfpack) return "UMFPACK";
-  const bool mumps =
-      method_ == LinearSolverSpec::Method::Auto && size_ >= kUnsymmetricMumpsBreakEven;
+  const bool mumps = method_ == LinearSolverSpec::Method::Auto &&
+                     size_ >= kUnsymmetricMumpsBreakEven && !mumpsUnavailable_;
   return mumps ? "CHOLMOD/MUMPS" : "CHOLMOD/UMFPACK";
 }
 
@@ -163,9 +180,7 @@ void TangentSolver::factorizeDirect(const SystemMatrices& system) {
     }
   }
   try {
-    const bool mumps =
-        method_ == LinearSolverSpec::Method::Auto && size_ >= kUnsymmetricMumpsBreakEven;
-    factorizeWith(mumps ? mumpsDirect() : general_, system);
+    factorizeWith(autoPrefersMumps() ? mumpsDirect() : general_, system);
   } catch (const StepFailure& failure) {
     if (choleskyFailure.empty()) throw;
     throw StepFailure(failure.kind(), choleskyFailure + "; " + failure.what());

@@ -92,6 +92,10 @@ class TangentSolver {
   // solve; on one, for large unsymmetric systems under auto (kUnsymmetricMumpsBreakEven).
   Backend mumpsDirect_;
   Backend& mumpsDirect();
+  // auto, one process: whether this unsymmetric system goes to MUMPS (from
+  // kUnsymmetricMumpsBreakEven equations, if PETSc can be loaded; otherwise UMFPACK, once said).
+  bool autoPrefersMumps();
+  bool mumpsUnavailable_ = false;
   // The direct solvers factorizeDirect uses now, e.g. "CHOLMOD/UMFPACK".
   std::string directSolvers() const;
   bool distributed_ = false;  // the layout distributes the rows over several processes
