@@ -53,6 +53,9 @@ constexpr PetscInt kGmresRestart = 100;
 // Relative residual above which a direct solve counts as failed (round-off of a backward-stable
 // LU is ~1e-15 on our tangents; SuperLU_dist's static pivoting can miss by far more).
 constexpr double kDirectResidual = 1e-8;
+// The largest margin of MUMPS's work arrays beyond the analysis's estimate (ICNTL(14), per
+// cent; MUMPS's default is 20 to 35 by matrix type) that the retries of factorize() go to.
+constexpr PetscInt kMaxMumpsMargin = 320;
 
 const char* methodName(PetscMethod method) {
   switch (method) {
@@ -115,33 +118,24 @@ class PetscSolver final : public LinearSolver {
     factored_ = false;
     setValues(matrix);
     if (iterative()) setNearNullSpace();
-    check(KSPSetOperators(ksp_, matrix_, matrix_), "KSPSetOperators");
-    PC pc = nullptr;
-    check(KSPGetPC(ksp_, &pc), "KSPGetPC");
-    Mat factor = nullptr;
-    if (method_ == PetscMethod::Mumps) {
-      // Null-pivot detection (ICNTL 24) with the threshold of the other direct solvers
-      // (CNTL 3 relative to ||A||): without it MUMPS factors a singular tangent silently.
-      check(PCFactorSetUpMatSolverType(pc), "PCFactorSetUpMatSolverType");
-      check(PCFactorGetMatrix(pc, &factor), "PCFactorGetMatrix");
-      check(MatMumpsSetIcntl(factor, 24, 1), "MatMumpsSetIcntl");
-      check(MatMumpsSetCntl(factor, 3, kSingularPivotRatio), "MatMumpsSetCntl");
-    }
-    // Direct: the numeric factorization; iterative: the AMG hierarchy of this matrix.
-    const PetscErrorCode code = KSPSetUp(ksp_);
-    PCFailedReason reason = PC_NOERROR;
-    check(PCGetFailedReason(pc, &reason), "PCGetFailedReason");
-    PetscInt nullPivots = 0;
-    if (factor && code == 0) check(MatMumpsGetInfog(factor, 28, &nullPivots), "MatMumpsGetInfog");
-    if (nullPivots > 0) reason = PC_FACTOR_NUMERIC_ZEROPIVOT;
-    statistics_.factorizationSeconds += secondsSince(start);
-    if (code != 0 || reason != PC_NOERROR) {
+    // MUMPS sizes its work arrays from the analysis's estimate plus ICNTL(14) per cent; pivoting
+    // can need more than that (INFOG(1) = -8, -9, -11 .. -15). Then the factorization is redone
+    // with twice the margin, as MUMPS's manual advises, up to kMaxMumpsMargin per cent.
+    PetscInt margin = 0;  // MUMPS's default
+    for (;;) {
+      if (factorOnce(matrix, margin) == FactorOutcome::Done) break;
+      margin = std::max<PetscInt>(2 * lastMumpsMargin_, 20);
+      if (margin > kMaxMumpsMargin) {
+        throw OutOfMemory(fmt::format(
+            "MUMPS's work arrays were still too small for the LU factor of the {} x {} tangent "
+            "({} nonzeros) with {} % beyond the analysis's estimate of {}: pivoting fills "
+            "this factor far beyond its structure; try solver=umfpack",
+            matrix.rows(), matrix.cols(), matrix.nonZeros(), lastMumpsMargin_, estimateText()));
+      }
       ++statistics_.failedFactorizations;
-      throw StepFailure(FailureKind::SingularSystem,
-                        fmt::format("{}: factorization failed ({}; a body free to move as a "
-                                    "rigid body, or a missing support?)",
-                                    name(), code != 0 ? "error" : PCFailedReasons[reason]));
+      releaseFactor();
     }
+    statistics_.factorizationSeconds += secondsSince(start);
     factored_ = true;
   }
 
@@ -210,6 +204,84 @@ class PetscSolver final : public LinearSolver {
   }
 
  private:
+  enum class FactorOutcome { Done, WorkspaceTooSmall };
+
+  // One numeric factorization (direct) or AMG set-up (iterative) of the values set. Throws
+  // OutOfMemory when memory ran out, StepFailure for a singular tangent.
+  FactorOutcome factorOnce(const SparseMatrix& matrix, int mumpsMargin) {
+    check(KSPSetOperators(ksp_, matrix_, matrix_), "KSPSetOperators");
+    PC pc = nullptr;
+    check(KSPGetPC(ksp_, &pc), "KSPGetPC");
+    factor_ = nullptr;
+    if (method_ == PetscMethod::Mumps) {
+      // Null-pivot detection (ICNTL 24) with the threshold of the other direct solvers
+      // (CNTL 3 relative to ||A||): without it MUMPS factors a singular tangent silently.
+      check(PCFactorSetUpMatSolverType(pc), "PCFactorSetUpMatSolverType");
+      check(PCFactorGetMatrix(pc, &factor_), "PCFactorGetMatrix");
+      check(MatMumpsSetIcntl(factor_, 24, 1), "MatMumpsSetIcntl");
+      if (mumpsMargin > 0) check(MatMumpsSetIcntl(factor_, 14, mumpsMargin), "MatMumpsSetIcntl");
+      check(MatMumpsGetIcntl(factor_, 14, &lastMumpsMargin_), "MatMumpsGetIcntl");
+      check(MatMumpsSetCntl(factor_, 3, kSingularPivotRatio), "MatMumpsSetCntl");
+    }
+    // Direct: the analysis and numeric factorization; iterative: the AMG hierarchy.
+    const PetscErrorCode code = KSPSetUp(ksp_);
+    if (code == PETSC_ERR_MEM) {
+      throw OutOfMemory(fmt::format(
+          "{} ran out of memory setting up the {} x {} tangent ({} nonzeros): {} of this model "
+          "does not fit; use fewer elements or a machine with more memory",
+          name(), matrix.rows(), matrix.cols(), matrix.nonZeros(),
+          iterative() ? "the multigrid hierarchy" : "the LU factor"));
+    }
+    PCFailedReason reason = PC_NOERROR;
+    check(PCGetFailedReason(pc, &reason), "PCGetFailedReason");
+    if (factor_ && reason == PC_FACTOR_OUTMEMORY) {
+      PetscInt status = 0;  // INFOG(1): the same on every process
+      check(MatMumpsGetInfog(factor_, 1, &status), "MatMumpsGetInfog");
+      if (status != -13 && status != -5 && status != -7) return FactorOutcome::WorkspaceTooSmall;
+      throwMumpsOutOfMemory(matrix, status);
+    }
+    PetscInt nullPivots = 0;
+    if (factor_ && code == 0) check(MatMumpsGetInfog(factor_, 28, &nullPivots), "MatMumpsGetInfog");
+    if (nullPivots > 0) reason = PC_FACTOR_NUMERIC_ZEROPIVOT;
+    if (code != 0 || reason != PC_NOERROR) {
+      ++statistics_.failedFactorizations;
+      throw StepFailure(FailureKind::SingularSystem,
+                        fmt::format("{}: factorization failed ({}; a body free to move as a "
+                                    "rigid body, or a missing support?)",
+                                    name(), code != 0 ? "error" : PCFailedReasons[reason]));
+    }
+    return FactorOutcome::Done;
+  }
+
+  // MUMPS could not allocate (INFOG(1) = -13 in the factorization, -5 or -7 in the analysis):
+  // INFO(2) is the number of reals it asked for (times 1e6 when negative), on this process.
+  [[noreturn]] void throwMumpsOutOfMemory(const SparseMatrix& matrix, PetscInt status) {
+    PetscInt asked = 0;
+    check(MatMumpsGetInfo(factor_, 2, &asked), "MatMumpsGetInfo");
+    const double bytes =
+        (asked < 0 ? -1e6 * static_cast<double>(asked) : static_cast<double>(asked)) *
+        sizeof(PetscScalar);
+    const std::string request =
+        asked != 0 ? fmt::format(" (an allocation of {:.1f} MiB failed)", bytes / (1 << 20))
+                   : std::string();
+    throw OutOfMemory(fmt::format(
+        "MUMPS ran out of memory in the {} of the {} x {} tangent ({} nonzeros){}; the analysis "
+        "estimated {}: the LU factor of this model does not fit; use fewer elements or a "
+        "machine with more memory",
+        status == -13 ? "factorization" : "analysis", matrix.rows(), matrix.cols(),
+        matrix.nonZeros(), request, estimateText()));
+  }
+
+  // INFOG(17): the analysis's estimate of MUMPS's memory for the factorization, in MB, summed
+  // over the processes.
+  std::string estimateText() const {
+    PetscInt megabytes = 0;
+    if (!factor_ || MatMumpsGetInfog(factor_, 17, &megabytes) != 0 || megabytes <= 0) {
+      return "nothing (it did not finish)";
+    }
+    return fmt::format("{:.2f} GiB for the factorization", megabytes * 1e6 / (1 << 30));
+  }
+
   // The rows this process owns.
   std::pair<PetscInt, PetscInt> ownedRows() const {
     return {firstRow_[static_cast<std::size_t>(rank_)],
@@ -594,6 +666,8 @@ class PetscSolver final : public LinearSolver {
   Vec all_ = nullptr;
   KSP ksp_ = nullptr;
   bool factored_ = false;
+  Mat factor_ = nullptr;           // MUMPS's factor matrix inside the PC (owned by the PC)
+  PetscInt lastMumpsMargin_ = 0;  // ICNTL(14) of the last MUMPS factorization
 };
 
 }  // namespace

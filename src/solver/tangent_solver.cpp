@@ -69,14 +69,14 @@ void TangentSolver::setLayout(const SystemLayout& layout) {
   layout_ = layout;
   distributed_ = !layout_.nodeOwner.empty();
   if (petsc_.solver) petsc_.solver->setLayout(layout_);
-  if (distributedDirect_.solver) distributedDirect_.solver->setLayout(layout_);
+  if (mumpsDirect_.solver) mumpsDirect_.solver->setLayout(layout_);
 }
 
 void TangentSolver::releaseOthers(const Backend& keep) {
   // Only one factor is alive at a time: the backends not used now give their numeric factor
   // back before the new one is built (peak memory of a run that switches between backends is
   // one factor, not two; the symbolic analyses stay).
-  for (Backend* backend : {&symmetric_, &general_, &petsc_, &distributedDirect_}) {
+  for (Backend* backend : {&symmetric_, &general_, &petsc_, &mumpsDirect_}) {
     if (backend != &keep && backend->solver) backend->solver->releaseFactor();
   }
 }
@@ -109,31 +109,62 @@ bool TangentSolver::usesPetsc(Eigen::Index size) {
     petsc_.solver->setLayout(layout_);
   }
   if (choice_.empty()) {
-    const std::string backend =
-        petsc ? petsc_.solver->name()
-              : (method_ == Method::Umfpack ? std::string("UMFPACK") : "CHOLMOD/UMFPACK");
+    const std::string backend = petsc ? petsc_.solver->name() : directSolvers();
     choice_ = fmt::format("{} -> {}", methodSpelling(method_), backend);
     if (method_ == Method::Auto) {
-      choice_ += fmt::format(" ({} equations {} {})", size,
-                             size >= kIterativeBreakEven ? ">=" : "<", kIterativeBreakEven);
+      choice_ += fmt::format(" ({} equations {} {}", size, size >= kIterativeBreakEven ? ">=" : "<",
+                             kIterativeBreakEven);
+      if (size >= kUnsymmetricMumpsBreakEven && !distributed_) {
+        choice_ +=
+            fmt::format("; unsymmetric systems to MUMPS from {}", kUnsymmetricMumpsBreakEven);
+      }
+      choice_ += ")";
     }
     if (distributed_) choice_ += " on several processes";
     if (petsc_.solver && petsc_.solver->iterative()) {
-      choice_ += fmt::format("; a stalled Krylov solve falls back to {}",
-                             distributed_ ? "MUMPS" : "CHOLMOD/UMFPACK");
+      choice_ += fmt::format("; a stalled Krylov solve falls back to {}", directSolvers());
     }
     if (notify_) notify_("linear solver: " + choice_);
   }
   return petsc;
 }
 
+TangentSolver::Backend& TangentSolver::mumpsDirect() {
+  if (!mumpsDirect_.solver) {
+    mumpsDirect_.solver = makePetscSolver(PetscMethod::Mumps);
+    mumpsDirect_.solver->setLayout(layout_);
+  }
+  return mumpsDirect_;
+}
+
+bool TangentSolver::autoPrefersMumps() {
+  if (method_ != LinearSolverSpec::Method::Auto || size_ < kUnsymmetricMumpsBreakEven ||
+      mumpsUnavailable_) {
+    return false;
+  }
+  // MUMPS is only faster here: when PETSc cannot be loaded or started (a build without it, or
+  // too little memory left to map its libraries and start MPI), UMFPACK solves instead.
+  try {
+    mumpsDirect();
+    return true;
+  } catch (const std::runtime_error& error) {
+    mumpsUnavailable_ = true;
+    if (notify_) notify_(fmt::format("{}; unsymmetric systems go to UMFPACK", error.what()));
+    return false;
+  }
+}
+
+std::string TangentSolver::directSolvers() const {
+  if (distributed_) return "MUMPS";
+  if (method_ == LinearSolverSpec::Method::Umfpack) return "UMFPACK";
+  const bool mumps = method_ == LinearSolverSpec::Method::Auto &&
+                     size_ >= kUnsymmetricMumpsBreakEven && !mumpsUnavailable_;
+  return mumps ? "CHOLMOD/MUMPS" : "CHOLMOD/UMFPACK";
+}
+
 void TangentSolver::factorizeDirect(const SystemMatrices& system) {
   if (distributed_) {
-    if (!distributedDirect_.solver) {
-      distributedDirect_.solver = makePetscSolver(PetscMethod::Mumps);
-      distributedDirect_.solver->setLayout(layout_);
-    }
-    factorizeWith(distributedDirect_, system);
+    factorizeWith(mumpsDirect(), system);
     return;
   }
   std::string choleskyFailure;
@@ -149,7 +180,7 @@ void TangentSolver::factorizeDirect(const SystemMatrices& system) {
     }
   }
   try {
-    factorizeWith(general_, system);
+    factorizeWith(autoPrefersMumps() ? mumpsDirect() : general_, system);
   } catch (const StepFailure& failure) {
     if (choleskyFailure.empty()) throw;
     throw StepFailure(failure.kind(), choleskyFailure + "; " + failure.what());
@@ -183,8 +214,7 @@ Eigen::VectorXd TangentSolver::solve(const Eigen::VectorXd& rhs) {
     // on several processes).
     ++krylovFallbacks_;
     if (notify_) {
-      notify_(fmt::format("{}; solving this iteration with {}", failure.what(),
-                          distributed_ ? "MUMPS" : "CHOLMOD/UMFPACK"));
+      notify_(fmt::format("{}; solving this iteration with {}", failure.what(), directSolvers()));
     }
     factorizeDirect(*system_);
     solution = active_->solve(rhs);
@@ -200,7 +230,7 @@ LinearSolverStatistics TangentSolver::statistics() const {
   LinearSolverStatistics total = symmetric_.solver->statistics();
   total += general_.solver->statistics();
   if (petsc_.solver) total += petsc_.solver->statistics();
-  if (distributedDirect_.solver) total += distributedDirect_.solver->statistics();
+  if (mumpsDirect_.solver) total += mumpsDirect_.solver->statistics();
   total.krylovFallbacks = krylovFallbacks_;
   return total;
 }

@@ -1,7 +1,8 @@
 // TangentSolver: picks the linear solver for each Newton system (deck: `solve solver=...`).
 // The direct pair: symmetric tangents go to CHOLMOD; when CHOLMOD finds one not positive
 // definite (legal with contact) UMFPACK takes over for the rest of the step; unsymmetric
-// tangents go to UMFPACK. `solver=auto` uses the direct pair below kIterativeBreakEven free
+// tangents go to UMFPACK (under `solver=auto` from kUnsymmetricMumpsBreakEven equations to
+// MUMPS instead). `solver=auto` uses the direct pair below kIterativeBreakEven free
 // equations and GMRES + GAMG (PETSc) above it. An iterative solve that stalls or
 // diverges is redone with the direct pair for that iteration, and the note says so. Each
 // backend repeats its symbolic analysis only when SystemMatrices::patternVersion changes. On
@@ -28,6 +29,15 @@ namespace cc {
 // whole 57 k scaling run took 39.8 CPU s with GAMG (59 Newton iterations) against ~65 with
 // CHOLMOD/UMFPACK (56). Every paper and regression deck is far below it (at most ~20 k).
 inline constexpr Eigen::Index kIterativeBreakEven = 50000;
+
+// Free equations from which `solver=auto` factorizes unsymmetric systems (friction) with MUMPS
+// (PETSc, one process) instead of UMFPACK. The whole scaling runs, one thread, the two solvers
+// back to back (`run --solver umfpack|mumps --cost`, load average 6-7, 2026-11-25): 8 k
+// equations 5.2-6.1 against 5.6-5.8 CPU s (even); 14 k 23.6 against 8.4; 45 k 117.8 against 44.1
+// (idle: 89.0 against 32.6 s of solving, docs/performance/distributed.md), with the same Newton
+// iterations. UMFPACK's allocation of its workspace at every factorization (a third of its time
+// as system time) is most of the difference.
+inline constexpr Eigen::Index kUnsymmetricMumpsBreakEven = 12000;
 
 class TangentSolver {
  public:
@@ -78,8 +88,16 @@ class TangentSolver {
   Backend symmetric_;
   Backend general_;
   Backend petsc_;  // created on first use
-  // Several processes: MUMPS for the fallback of a failed Krylov solve (created on first use).
-  Backend distributedDirect_;
+  // MUMPS as a direct solver (created on first use): on several processes for every direct
+  // solve; on one, for large unsymmetric systems under auto (kUnsymmetricMumpsBreakEven).
+  Backend mumpsDirect_;
+  Backend& mumpsDirect();
+  // auto, one process: whether this unsymmetric system goes to MUMPS (from
+  // kUnsymmetricMumpsBreakEven equations, if PETSc can be loaded; otherwise UMFPACK, once said).
+  bool autoPrefersMumps();
+  bool mumpsUnavailable_ = false;
+  // The direct solvers factorizeDirect uses now, e.g. "CHOLMOD/UMFPACK".
+  std::string directSolvers() const;
   bool distributed_ = false;  // the layout distributes the rows over several processes
   LinearSolver* active_ = nullptr;
   const SystemMatrices* system_ = nullptr;

@@ -18,7 +18,8 @@
 --case interrupt: an interrupted run with output_every says how many of its converged steps are
   written (it said N were kept while the file held none); a second SIGINT stops at once (exit 4)
   and the steps written before stay readable.
---case out_of_memory: input/stress/out_of_memory_in_contact.deck run under a real address-space
+--case out_of_memory: input/stress/out_of_memory_in_contact.deck without the PETSc plugin (so
+  that solver=auto uses UMFPACK as a build without PETSc does), run under a real address-space
   limit (RLIMIT_AS, as `ulimit -v` or `prlimit --as` set it). The peaks of its first two steps
   (CHOLMOD) and of step 3 (UMFPACK, in contact) are measured first (VmPeak of unlimited runs on
   one thread). A limit half-way between them: exit 8, a message naming UMFPACK (its ordering
@@ -31,6 +32,11 @@
   factorization): each run ends within the timeout with exit 8, a message saying what does not
   fit and the limit, never an internal error, a crash or a hang; its file, when it has one,
   holds the converged steps it reports.
+--case out_of_memory_mumps: the same with the plugin: solver=auto factors step 3's 13 872
+  unsymmetric equations with MUMPS (PETSc and MPI started at that moment). The limit goes just
+  under the full run's peak: the message names MUMPS and its analysis's estimate. Lower limits of
+  the sweep leave too little to start PETSc and MPI (covcontact then does not try, since Open
+  MPI would abort the process; UMFPACK takes over and runs out in its turn).
 
 Usage: check_files.py --covcontact BIN --source DIR --scratch DIR --case C
 """
@@ -366,7 +372,14 @@ def check_out_of_memory_file(results, stderr, what):
     return steps
 
 
-def out_of_memory_case(args):
+def out_of_memory_case(args, solver):
+    """solver=auto sends the deck's 13 872 unsymmetric equations to MUMPS ("mumps"); with the
+    PETSc plugin made unavailable (COVCONTACT_PETSC_MODULE naming no file) auto falls back to
+    UMFPACK ("umfpack"), as in a build without PETSc. Steps 1-2 are CHOLMOD's either way."""
+    choice = []
+    if solver == "umfpack":
+        ONE_THREAD["COVCONTACT_PETSC_MODULE"] = os.path.join(args.scratch, "no_petsc_plugin.so")
+    name = "UMFPACK" if solver == "umfpack" else "MUMPS"
     decks = os.path.join(args.scratch, "input", "stress")
     os.makedirs(decks)
     os.makedirs(os.path.join(args.scratch, "meshes"))
@@ -384,11 +397,12 @@ def out_of_memory_case(args):
     result, check_peak = run_measured(args, ["check", deck])
     check(result.returncode == EXIT_OK, f"check: exit {result.returncode}\n{result.stderr}")
     apart = os.path.join(args.scratch, "apart.h5")
-    result, apart_peak = run_measured(args, ["run", apart_deck, "-o", apart, "--threads", "1"])
+    result, apart_peak = run_measured(args, ["run", apart_deck, "-o", apart, "--threads", "1",
+                                             *choice])
     check(result.returncode == EXIT_OK, f"steps 1-2 unlimited: exit {result.returncode}\n"
           f"{result.stderr}")
     full = os.path.join(args.scratch, "full.h5")
-    result, full_peak = run_measured(args, ["run", deck, "-o", full, "--threads", "1"])
+    result, full_peak = run_measured(args, ["run", deck, "-o", full, "--threads", "1", *choice])
     check(result.returncode == EXIT_OK, f"unlimited run: exit {result.returncode}\n{result.stderr}")
     mib = 1 << 20
     # 185 MiB when measured. Half-way, the limit is ~90 MiB from either peak, so that the outcome
@@ -398,23 +412,30 @@ def out_of_memory_case(args):
           f"step 3 needs only {(full_peak - apart_peak) / mib:.0f} MiB more than steps 1-2 "
           f"({apart_peak / mib:.0f} -> {full_peak / mib:.0f} MiB): the deck no longer tests this")
     limit = (apart_peak + full_peak) // 2 // 4096 * 4096
+    if solver == "mumps":
+        # Loading PETSc and starting MPI for MUMPS takes ~250 MiB of address space before the
+        # factor (covcontact refuses to start them with less than 320 MiB left, and auto then
+        # falls back to UMFPACK): the limit goes just under the full run's peak, where MUMPS's
+        # main work array (~120 MiB here) cannot be allocated.
+        limit = (full_peak - 48 * mib) // 4096 * 4096
     print(f"peaks: check {check_peak / mib:.0f} MiB, steps 1-2 {apart_peak / mib:.0f} MiB, "
           f"with step 3 {full_peak / mib:.0f} MiB; limit {limit / mib:.0f} MiB")
 
     limited = os.path.join(args.scratch, "limited.h5")
-    result, _ = run_measured(args, ["run", deck, "-o", limited, "--threads", "1"], limit)
+    result, _ = run_measured(args, ["run", deck, "-o", limited, "--threads", "1", *choice], limit)
     check(result.returncode == EXIT_OUT_OF_MEMORY,
           f"run under the limit: exit {result.returncode}, expected {EXIT_OUT_OF_MEMORY}\n"
           f"{result.stdout}{result.stderr}")
-    for fragment in ("covcontact: error: UMFPACK", " 13872 x 13872 tangent (",
+    for fragment in (f"covcontact: error: {name}", " 13872 x 13872 tangent (",
                      "the LU factor of this model does not fit",
                      f"the address space of the process is limited to {byte_size(limit)}",
                      f"the {OOM_STEPS_APART} converged steps are kept in {limited}"):
         check(fragment in result.stderr, f"stderr lacks {fragment!r}:\n{result.stderr}")
     # Measured: the ordering of the analysis fails up to ~495 MiB, the factorization above.
     if "in the factorization" in result.stderr:
-        check("; the analysis estimated the LU factor at " in result.stderr,
-              f"no estimate of the factor:\n{result.stderr}")
+        estimate = ("; the analysis estimated the LU factor at " if solver == "umfpack" else
+                    "; the analysis estimated ")
+        check(estimate in result.stderr, f"no estimate of the factor:\n{result.stderr}")
     check(check_out_of_memory_file(limited, result.stderr, "limited run") == OOM_STEPS_APART,
           "the limited run does not keep steps 1-2")
     with h5py.File(limited, "r") as h5, h5py.File(apart, "r") as reference:
@@ -436,8 +457,25 @@ def out_of_memory_case(args):
     for k in range(12):
         limit = (low + (high - low) * k // 12) // 4096 * 4096
         results = os.path.join(args.scratch, f"sweep_{k}.h5")
-        result, _ = run_measured(args, ["run", deck, "-o", results, "--threads", "1"], limit)
+        result, _ = run_measured(args, ["run", deck, "-o", results, "--threads", "1", *choice],
+                                 limit)
         what = f"limit {limit / mib:.0f} MiB"
+        if solver == "mumps" and result.returncode == EXIT_OK:
+            # Too little left to start PETSc and MPI, enough for UMFPACK: auto falls back to it,
+            # says so, and completes with MUMPS's answer to round-off.
+            check("unsymmetric systems go to UMFPACK" in result.stderr,
+                  f"{what}: exit 0 without the fallback to UMFPACK:\n{result.stderr}")
+            with h5py.File(results, "r") as h5, h5py.File(full, "r") as reference:
+                check(len(h5["steps"]) == len(reference["steps"]), f"{what}: steps missing")
+                last = sorted(reference["steps"].keys())[-1]
+                got, expected = h5["steps"][last]["displacement"][...], \
+                    reference["steps"][last]["displacement"][...]
+                error = abs(got - expected).max() / abs(expected).max()
+                check(error <= 1e-8, f"{what}: UMFPACK's step {last} differs from MUMPS's by "
+                                     f"{error:.3g} (relative)")
+            print(f"{what}: exit 0, PETSc not started, UMFPACK completed (displacement equal to "
+                  f"MUMPS's to {error:.1g})")
+            continue
         check(result.returncode == EXIT_OUT_OF_MEMORY,
               f"{what}: exit {result.returncode}, expected {EXIT_OUT_OF_MEMORY}\n"
               f"{result.stdout}{result.stderr}")
@@ -457,13 +495,14 @@ def main():
     parser.add_argument("--scratch", required=True, help="working directory (emptied first)")
     parser.add_argument("--case", required=True,
                         choices=["inputs", "concurrent", "sigpipe", "unreadable", "interrupt",
-                                 "out_of_memory"])
+                                 "out_of_memory", "out_of_memory_mumps"])
     args = parser.parse_args()
     shutil.rmtree(args.scratch, ignore_errors=True)
     os.makedirs(args.scratch)
     {"inputs": inputs_case, "concurrent": concurrent_case, "sigpipe": sigpipe_case,
      "unreadable": unreadable_case, "interrupt": interrupt_case,
-     "out_of_memory": out_of_memory_case}[args.case](args)
+     "out_of_memory": lambda args: out_of_memory_case(args, "umfpack"),
+     "out_of_memory_mumps": lambda args: out_of_memory_case(args, "mumps")}[args.case](args)
 
 
 if __name__ == "__main__":

@@ -216,6 +216,37 @@ TEST(PetscSolver, AutoKeepsTheDirectSolversBelowTheBreakEven) {
                                          model.system.free.rows(), kIterativeBreakEven));
 }
 
+TEST(PetscSolver, AutoFactorizesLargeUnsymmetricSystemsWithMumps) {
+  // 17^3 nodes: 13 872 equations, above kUnsymmetricMumpsBreakEven; the skew makes the system
+  // unsymmetric like a sliding contact tangent. The solution must be UMFPACK's to round-off.
+  const Lattice model = lattice(17, 0.3);
+  ASSERT_GE(model.system.free.rows(), kUnsymmetricMumpsBreakEven);
+  const SystemMatrices& system = model.system;
+  ASSERT_FALSE(system.symmetric);
+  const Eigen::VectorXd rhs = rightHandSide(system.free.rows());
+  TangentSolver automatic(LinearSolverSpec::Method::Auto);
+  automatic.factorize(system);
+  EXPECT_EQ(automatic.activeBackend(), "MUMPS");
+  EXPECT_EQ(automatic.choice(),
+            fmt::format("auto -> CHOLMOD/MUMPS ({} equations < {}; unsymmetric systems to MUMPS "
+                        "from {})",
+                        system.free.rows(), kIterativeBreakEven, kUnsymmetricMumpsBreakEven));
+  TangentSolver umfpack(LinearSolverSpec::Method::Umfpack);
+  umfpack.factorize(system);
+  EXPECT_EQ(umfpack.activeBackend(), "UMFPACK");
+  const Eigen::VectorXd reference = umfpack.solve(rhs);
+  EXPECT_LE(relativeError(automatic.solve(rhs), reference), 1e-9);
+  // Below the break-even, and symmetric systems at any size, stay with UMFPACK and CHOLMOD.
+  const Lattice small = lattice(8, 0.3);
+  TangentSolver smallAutomatic(LinearSolverSpec::Method::Auto);
+  smallAutomatic.factorize(small.system);
+  EXPECT_EQ(smallAutomatic.activeBackend(), "UMFPACK");
+  TangentSolver symmetricAutomatic(LinearSolverSpec::Method::Auto);
+  const Lattice symmetric = lattice(17);
+  symmetricAutomatic.factorize(symmetric.system);
+  EXPECT_EQ(symmetricAutomatic.activeBackend(), "CHOLMOD");
+}
+
 // PETSc and MPI are finalized once, after every test of the program.
 class PetscEnvironment : public ::testing::Environment {
  public:
