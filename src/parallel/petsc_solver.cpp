@@ -666,7 +666,7 @@ class PetscSolver final : public LinearSolver {
   Vec all_ = nullptr;
   KSP ksp_ = nullptr;
   bool factored_ = false;
-  Mat factor_ = nullptr;           // MUMPS's factor matrix inside the PC (owned by the PC)
+  Mat factor_ = nullptr;          // MUMPS's factor matrix inside the PC (owned by the PC)
   PetscInt lastMumpsMargin_ = 0;  // ICNTL(14) of the last MUMPS factorization
 };
 
