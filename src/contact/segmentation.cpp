@@ -54,8 +54,12 @@ std::vector<TrianglePoint> triangleRule(int rulePoints) {
   constexpr double w1 = 0.132394152788506181;
   constexpr double a2 = 0.797426985353087322, b2 = 0.101286507323456339;
   constexpr double w2 = 0.125939180544827153;
-  return {{{third, third, third}, 0.225}, {{a1, b1, b1}, w1}, {{b1, a1, b1}, w1},
-          {{b1, b1, a1}, w1},             {{a2, b2, b2}, w2}, {{b2, a2, b2}, w2},
+  return {{{third, third, third}, 0.225},
+          {{a1, b1, b1}, w1},
+          {{b1, a1, b1}, w1},
+          {{b1, b1, a1}, w1},
+          {{a2, b2, b2}, w2},
+          {{b2, a2, b2}, w2},
           {{b2, b2, a2}, w2}};
 }
 

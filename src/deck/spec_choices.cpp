@@ -63,8 +63,7 @@ const Choices<ContactSpec::MasterEdge>& masterEdges() {
 
 const Choices<ContactSpec::Integration>& contactIntegrations() {
   static const Choices<ContactSpec::Integration> choices = {
-      {"gauss", ContactSpec::Integration::Gauss},
-      {"segments", ContactSpec::Integration::Segments}};
+      {"gauss", ContactSpec::Integration::Gauss}, {"segments", ContactSpec::Integration::Segments}};
   return choices;
 }
 

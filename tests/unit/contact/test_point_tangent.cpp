@@ -452,13 +452,13 @@ TEST(SegmentedSts, PointsOfASlaveSegmentSplitByAMasterEdgeHaveTheKernelsTangents
     const NodeMatrix<double>& master = masters[p.image];
     // The slave is slightly warped: penetrate by `depth` at this point (as in the STS test
     // above).
-    const PointCase probe = segmentToSegment(master, shape::SurfaceType::Quad4, 0, 0, 0, true,
-                                             0.0, nullptr, p.xi, p.weight);
+    const PointCase probe = segmentToSegment(master, shape::SurfaceType::Quad4, 0, 0, 0, true, 0.0,
+                                             nullptr, p.xi, p.weight);
     const double height = evaluatePoint(probe.setup, probe.nodes).kinematics.gap;
     expectNormalTangentExactUpToSecondOrder(
         [&](double depth) {
-          return segmentToSegment(master, shape::SurfaceType::Quad4, 0, 0, 0, true,
-                                  depth + height, nullptr, p.xi, p.weight);
+          return segmentToSegment(master, shape::SurfaceType::Quad4, 0, 0, 0, true, depth + height,
+                                  nullptr, p.xi, p.weight);
         },
         4e-3);
     for (const auto& [friction, slipScale, traction] :

@@ -19,7 +19,8 @@ using Eigen::Vector3d;
 struct TiltedPlane {
   Vector3d origin{0.3, -0.2, 0.1};
   Vector3d e1 = Vector3d(1, 0, 0.2).normalized();
-  Vector3d e2 = Vector3d(1, 0, 0.2).cross(Vector3d(0, 1, 0.3)).cross(Vector3d(1, 0, 0.2)).normalized();
+  Vector3d e2 =
+      Vector3d(1, 0, 0.2).cross(Vector3d(0, 1, 0.3)).cross(Vector3d(1, 0, 0.2)).normalized();
   Vector3d normal() const { return e1.cross(e2); }
   Vector3d at(double u, double v, double offset = 0) const {
     return origin + u * e1 + v * e2 + offset * normal();
@@ -105,8 +106,8 @@ TEST(SegmentPoints, WeightsSumToTheSlaveAreaWhateverTheOverlap) {
     for (double angle : {0.0, 0.37}) {
       for (double edge : {5.0, 0.1}) {
         for (int rule : {1, 2, 3}) {
-          SCOPED_TRACE(testing::Message() << "h " << h << " angle " << angle << " edge " << edge
-                                          << " rule " << rule);
+          SCOPED_TRACE(testing::Message()
+                       << "h " << h << " angle " << angle << " edge " << edge << " rule " << rule);
           const Sums sums = integrateArea(slave, masterGrid(plane, h, angle, edge), rule);
           EXPECT_NEAR(sums.total / area, 1, 1e-13);
           EXPECT_GT(sums.points, 4u);  // every grid splits the slave
@@ -124,8 +125,8 @@ TEST(SegmentPoints, WeightsSumToTheSlaveAreaWhateverTheOverlap) {
 TEST(SegmentPoints, SlaveHalfOverTheMastersFreeEdgeGetsHalf) {
   // A rectangular slave [-0.5, 0.5] x [-0.5, 0.5]; the master ends at u = 0 (a free edge).
   const TiltedPlane plane;
-  const NodeMatrix<double> slave = quad(plane, {Vector2d(-0.5, -0.5), Vector2d(0.5, -0.5),
-                                                Vector2d(0.5, 0.5), Vector2d(-0.5, 0.5)});
+  const NodeMatrix<double> slave = quad(
+      plane, {Vector2d(-0.5, -0.5), Vector2d(0.5, -0.5), Vector2d(0.5, 0.5), Vector2d(-0.5, 0.5)});
   const std::vector<NodeMatrix<double>> masters = {
       quad(plane, {Vector2d(-1, -1), Vector2d(-1, 0.2), Vector2d(0, 0.2), Vector2d(0, -1)}, 0.01),
       quad(plane, {Vector2d(-1, 0.2), Vector2d(-1, 1), Vector2d(0, 1), Vector2d(0, 0.2)}, 0.01)};
@@ -140,10 +141,9 @@ TEST(SegmentPoints, UnsplitSegmentKeepsTheGaussRule) {
   // One master segment covering the whole slave: the points are the Gauss points.
   const TiltedPlane plane;
   const NodeMatrix<double> slave = slaveQuad(plane);
-  const NodeMatrix<double> master =
-      quad(plane, {Vector2d(-1.2, -1.2), Vector2d(-1.2, 1.2), Vector2d(1.2, 1.2),
-                   Vector2d(1.2, -1.2)},
-           0.01);
+  const NodeMatrix<double> master = quad(
+      plane, {Vector2d(-1.2, -1.2), Vector2d(-1.2, 1.2), Vector2d(1.2, 1.2), Vector2d(1.2, -1.2)},
+      0.01);
   const std::optional<Polygon2> image = masterImage(shape::SurfaceType::Quad4, slave, master);
   ASSERT_TRUE(image.has_value());
   const std::vector<SegmentPoint> points = segmentPoints({*image}, 2);
@@ -159,8 +159,8 @@ TEST(SegmentPoints, UnsplitSegmentKeepsTheGaussRule) {
 TEST(SegmentPoints, TriangleRulesIntegrateTheirDegreeExactly) {
   // On a square split by two images, a polynomial of the rule's degree in xi is integrated
   // exactly: int over [-1,1]^2 of xi1^a xi2^b = 4/((a+1)(b+1)) for even a, b.
-  const std::vector<Polygon2> images = {
-      {{-3, -3}, {0.3, -3}, {0.1, 3}, {-3, 3}}, {{0.3, -3}, {3, -3}, {3, 3}, {0.1, 3}}};
+  const std::vector<Polygon2> images = {{{-3, -3}, {0.3, -3}, {0.1, 3}, {-3, 3}},
+                                        {{0.3, -3}, {3, -3}, {3, 3}, {0.1, 3}}};
   const struct {
     int rule, a, b;
   } cases[] = {{1, 1, 0}, {2, 2, 0}, {2, 1, 1}, {3, 4, 0}, {3, 2, 2}, {3, 3, 2}};
