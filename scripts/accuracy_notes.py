@@ -78,12 +78,14 @@ CASE_TITLES = {
     "hertz_rigid_sphere": "Hertz: rigid sphere on an elastic block (STAS)",
     "hertz_elastic_sphere": "Hertz: elastic sphere on an elastic block (STS)",
     "hertz_elastic_sphere_nts": "Hertz: elastic sphere on an elastic block (NTS)",
+    "hertz_elastic_sphere_segments": "Hertz: elastic sphere on an elastic block (STS, integration=segments)",
     "hertz_cylinder": "Hertz: rigid cylinder in plane strain (STAS)",
     "cattaneo_mindlin_sphere": "Cattaneo-Mindlin: elastic sphere on an elastic block (STS)",
     "cattaneo_mindlin_cylinder": "Cattaneo-Mindlin: elastic cylinder in plane strain (STS)",
     "patch_sts_matching": "Patch test: matching meshes (STS)",
     "patch_sts": "Patch test: non-matching meshes (STS)",
     "patch_nts": "Patch test: non-matching meshes (NTS)",
+    "patch_sts_segments": "Patch test: non-matching meshes (STS, integration=segments)",
     "example_6_1": "Paper example 6.1(a): sliding block (STS)",
 }
 

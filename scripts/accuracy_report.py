@@ -25,6 +25,7 @@ QUANTITIES = {
     "hertz_rigid_sphere": HERTZ_SPHERE,
     "hertz_elastic_sphere": HERTZ_SPHERE,
     "hertz_elastic_sphere_nts": HERTZ_SPHERE,
+    "hertz_elastic_sphere_segments": HERTZ_SPHERE,
     "hertz_cylinder": [("half_width", "b", "elements"), ("centre_pressure", "p0 centre", "rel"),
                        ("peak_pressure", "p0 max", "rel")],
     "cattaneo_mindlin_sphere": [("stick_radius", "c", "elements"), ("force:x", "Q(δt)", "rel"),
@@ -39,12 +40,15 @@ QUANTITIES = {
 }
 QUANTITIES["patch_nts"] = QUANTITIES["patch_sts"]
 QUANTITIES["patch_sts_matching"] = QUANTITIES["patch_sts"]
+QUANTITIES["patch_sts_segments"] = QUANTITIES["patch_sts"]
 
 KINDS = {
     "STAS": ["hertz_rigid_sphere", "hertz_cylinder"],
     "STS": ["hertz_elastic_sphere", "cattaneo_mindlin_sphere", "cattaneo_mindlin_cylinder", "patch_sts",
             "example_6_1"],
     "NTS": ["hertz_elastic_sphere_nts", "patch_nts"],
+    "STS-segments": ["hertz_elastic_sphere", "hertz_elastic_sphere_segments", "patch_sts",
+                     "patch_sts_segments"],
 }
 SWEEP_TITLES = {"mesh": "mesh levels", "penalty": "penalty (alpha = eps_N h / E; patch tests and example 6.1: eps_N)",
                 "steps": "load steps", "domain": "domain size", "points": "Gauss points per direction"}

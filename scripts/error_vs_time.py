@@ -172,6 +172,10 @@ def hertz_elastic_sphere():
     nts = [(r"^contact sts (.*) points=\d+", r"contact nts \1")]
     runs += [Variant("hertz_elastic_sphere_nts", "mesh", f"m{m}", deck, {"m": m}, penalty_for(deck, m, 30),
                      replace=nts, value=m) for m in (3, 4)]
+    # integration=segments (issue 16, part 1) against the Gauss points above.
+    segments = [(r"^(contact sts .*points=\d+)", r"\1 integration=segments")]
+    runs += [Variant("hertz_elastic_sphere_segments", "mesh", f"m{m}", deck, {"m": m},
+                     penalty_for(deck, m, 30), replace=segments, value=m) for m in (3, 4, 6)]
     return runs
 
 
@@ -217,7 +221,7 @@ def cattaneo_mindlin_cylinder():
 
 def patch():
     runs = []
-    for kind in ("sts", "nts", "sts_matching"):
+    for kind in ("sts", "nts", "sts_matching", "sts_segments"):
         deck = DECKS / f"patch_test_{kind}.deck"
         for n in (2, 4, 8, 16):
             upper = n if kind == "sts_matching" else n + 1

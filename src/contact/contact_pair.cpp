@@ -34,9 +34,11 @@ std::unique_ptr<ContactPair> ContactPair::nodeToSegment(ContactPairConfig config
 std::unique_ptr<ContactPair> ContactPair::segmentToSegment(ContactPairConfig config,
                                                            const FaceSet& master,
                                                            const FaceSet& slave) {
+  // With integration=segments these Gauss points stand in until the first prepare() segments.
   std::vector<PairPoint> points = segmentToSegmentPoints(slave, config.integrationPoints);
-  return std::unique_ptr<ContactPair>(
-      new ContactPair(std::move(config), master, std::move(points)));
+  std::unique_ptr<ContactPair> pair(new ContactPair(std::move(config), master, std::move(points)));
+  if (pair->config_.segmentIntegration) pair->slaveFaces_ = slave;
+  return pair;
 }
 
 std::unique_ptr<ContactPair> ContactPair::segmentToAnalytical(ContactPairConfig config,
@@ -139,6 +141,13 @@ LocalStatus ContactPair::prepare(const AssemblyState& state) {
     tracker_.updateNormals(*state.previous);
     normalsTime_ = state.previousTime;
     normalsReady_ = true;
+  }
+  if (config_.segmentIntegration && (!segmentsReady_ || segmentsTime_ != state.previousTime)) {
+    // Once per step (a cut-back retries with the same points): within a Newton solve the
+    // points stay put, so the residual is as smooth as with Gauss points and the tangent stays
+    // its consistent linearization (docs/verification/segment_sts.md).
+    const LocalStatus status = resegment(state);
+    if (!status.ok) return status;
   }
   if (!historyInitialized_) initializeHistory(state);
   if (!searchesMasterSegments(config_.kind)) {

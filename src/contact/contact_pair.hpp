@@ -39,6 +39,11 @@ struct ContactPairConfig {
   bool smoothMaster = false;
   // Free master edges where the force fades out (contact_point.hpp, kFreeEdgeBand).
   bool fadingEdges = false;
+  // Segment-exact STS integration (issue 16, part 1; segmentation.hpp): the points of each
+  // slave segment are placed on its pieces of overlap with the master segments, rebuilt from
+  // the converged configuration at the start of every step and fixed over the step
+  // (contact_pair_segments.cpp). False: integrationPoints^2 Gauss points, as in the paper.
+  bool segmentIntegration = false;
 };
 
 // A rigid translation of the STAS surface as a function of time (called serially).
@@ -120,6 +125,11 @@ class ContactPair : public Contribution {
   // At commit / cut-back: the multipliers of the step become committed / are forgotten.
   void commitAugmentation();
   void restoreAugmentation();
+  // integration=segments (contact_pair_segments.cpp): the points of the segmentation at the
+  // converged configuration of the step's start, each with the history of the nearest old point
+  // on its slave segment, re-projected there.
+  LocalStatus resegment(const AssemblyState& state);
+  void inheritHistory(PairPoint& point, const Eigen::Matrix3Xd& x) const;
 
   ContactPairConfig config_;
   SegmentTracker tracker_;
@@ -142,6 +152,10 @@ class ContactPair : public Contribution {
   // Smoothed master: the start-of-step time the nodal normals were computed for.
   double normalsTime_ = 0;
   bool normalsReady_ = false;
+  // integration=segments: the slave faces, and the start-of-step time the points were made for.
+  FaceSet slaveFaces_;
+  double segmentsTime_ = 0;
+  bool segmentsReady_ = false;
   int augmentations_ = 0;  // Uzawa updates in the current step
   std::string lastAugmentationMessage_;
   double stepDissipation_ = 0;

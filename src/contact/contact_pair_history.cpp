@@ -63,6 +63,14 @@ Eigen::MatrixXd ContactPair::exportHistory() const {
 }
 
 void ContactPair::importHistory(const Eigen::MatrixXd& table) {
+  if (config_.segmentIntegration) {
+    // The points of integration=segments depend on the configuration they were segmented at,
+    // which the restart data do not hold (docs/verification/segment_sts.md).
+    throw std::invalid_argument(fmt::format(
+        "contact pair '{}': a run with integration=segments cannot be restarted (its points "
+        "are rebuilt every step); rerun it from the start",
+        config_.name));
+  }
   if (table.rows() != kHistoryRows || table.cols() != pointCount()) {
     throw std::invalid_argument(fmt::format(
         "contact pair '{}': history table is {} x {}, expected {} x {} (one column per point)",

@@ -68,6 +68,7 @@ std::vector<PairPoint> segmentToSegmentPoints(const FaceSet& slave, int integrat
   for (int face = 0; face < slave.connectivity.rows(); ++face) {
     for (const auto& q : rule) {
       PairPoint p;
+      p.slaveFace = face;
       const shape::SurfaceShape<double> shape = shape::surfaceShape(type, q.xi[0], q.xi[1]);
       p.slaveCount = shape.count;
       for (int k = 0; k < shape.count; ++k) {

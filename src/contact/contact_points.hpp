@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "contact/master_surface.hpp"
 #include "contact/point_evaluation.hpp"
 #include "mesh/mesh.hpp"
 #include "records/result_records.hpp"
@@ -49,6 +50,7 @@ struct PairPoint {
   std::array<int, 9> slaveNodes{};
   std::array<double, 9> slaveShape{};
   SlaveSide slave;
+  int slaveFace = -1;  // STS: the slave segment (row of the slave face set)
   // STAS: the fixed master segment and Gauss point.
   int fixedSegment = -1;
   Eigen::Vector2d gaussPoint = Eigen::Vector2d::Zero();
@@ -83,6 +85,14 @@ struct PairPoint {
 std::vector<PairPoint> nodeToSegmentPoints(const Mesh& mesh, const FaceSet& slave);
 // STS: integrationPoints^2 Gauss points per slave segment.
 std::vector<PairPoint> segmentToSegmentPoints(const FaceSet& slave, int integrationPoints);
+// STS with integration=segments (segmentation.hpp, issue 16 part 1): the points of every slave
+// segment on its pieces of overlap with the master segments, for the coordinates x. Built from
+// x and the mesh alone, in the order of the slave faces, so every process of a run builds the
+// same list. The master's search grid must be built for (nearly) x.
+std::vector<PairPoint> segmentedSegmentToSegmentPoints(const FaceSet& slave,
+                                                       const MasterSurface& master,
+                                                       const Eigen::Matrix3Xd& x,
+                                                       int integrationPoints);
 // STAS: integrationPoints^2 Gauss points per master segment, each on its fixed segment.
 std::vector<PairPoint> segmentToAnalyticalPoints(const FaceSet& master, int integrationPoints);
 

@@ -15,14 +15,18 @@ constexpr double kSearchReachInSegments = 1.0;
 
 }  // namespace
 
-LocalStatus SegmentTracker::track(std::vector<PairPoint>& points, const Eigen::Matrix3Xd& x,
-                                  double time, const std::string& pairName,
-                                  std::vector<int>& moved) {
-  moved.clear();
+void SegmentTracker::buildGrid(const Eigen::Matrix3Xd& x, double time) {
   if (gridTime_ != time) {
     master_.buildSearchGrid(x, kSearchReachInSegments);
     gridTime_ = time;
   }
+}
+
+LocalStatus SegmentTracker::track(std::vector<PairPoint>& points, const Eigen::Matrix3Xd& x,
+                                  double time, const std::string& pairName,
+                                  std::vector<int>& moved) {
+  moved.clear();
+  buildGrid(x, time);
   for (std::size_t i = 0; i < points.size(); ++i) {
     PairPoint& point = points[i];
     const Eigen::Vector3d position = slavePosition(point, x);

@@ -31,6 +31,9 @@ class SegmentTracker {
   LocalStatus track(std::vector<PairPoint>& points, const Eigen::Matrix3Xd& x, double time,
                     const std::string& pairName, std::vector<int>& moved);
 
+  // Builds the search grid for the coordinates x at `time` unless it is built for that time.
+  void buildGrid(const Eigen::Matrix3Xd& x, double time);
+
   // The master moved without a new time (a cut-back retries the same time): rebuild the grid.
   void invalidateGrid() { gridTime_ = -1; }
 

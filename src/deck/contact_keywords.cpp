@@ -191,6 +191,12 @@ void handleContact(const ParsedLine& line, DeckState& state) {
   if (contact.kind == ContactSpec::Kind::SegmentToAnalytical && line.given("edge")) {
     fail(line.value("edge").where, "edge= applies to sts and nts pairs only");
   }
+  contact.integration = choiceValue(contactIntegrations(), line.text("integration"));
+  if (contact.kind != ContactSpec::Kind::SegmentToSegment && line.given("integration")) {
+    fail(line.value("integration").where,
+         "integration= applies to sts pairs only (nts uses the slave nodes, stas the master's "
+         "Gauss points against the rigid surface)");
+  }
   contact.where = line.where();
   const std::string& kindName = line.positional(0).text;
   state.faceSetUses.push_back(

@@ -239,6 +239,10 @@ KeywordDecl contactKeyword() {
                      "sts, nts: beyond the master's free edges no force (sharp), or a force "
                      "fading smoothly to zero over 10% of a segment (fade)")
                .withDefault("sharp"),
+           enumValue("integration", choiceNames(contactIntegrations()),
+                     "sts: points= Gauss points per direction on each slave segment (gauss), or "
+                     "points on its pieces of overlap with the master segments (segments)")
+               .withDefault("gauss"),
            identifierValue("name", "pair name in the output (default pairK for the K-th pair)")},
       .itemName = "name",
       .notes =
@@ -259,7 +263,14 @@ KeywordDecl contactKeyword() {
           "converged configuration at the start of each step, held fixed over the step): "
           "search, projection, gap, normal, curvature and the tangent (exact for the fixed "
           "normals) then follow the C0 surface with continuous normals at the nodes "
-          "(docs/verification/smooth_master.md).",
+          "(docs/verification/smooth_master.md). integration=segments splits each slave "
+          "segment, in its parameter plane, by the images of the master segments it overlaps "
+          "(segmentation as in mortar methods) and puts a triangle rule on every piece "
+          "(points=1, 2, 3 or more: 1, 3 or 7 points per triangle; an unsplit segment keeps "
+          "its points x points Gauss rule); the points are rebuilt from the converged "
+          "configuration at the start of every step and fixed over it, each taking over the "
+          "history of the nearest old point; such a run cannot be restarted "
+          "(docs/verification/segment_sts.md).",
       .handler = handleContact};
 }
 

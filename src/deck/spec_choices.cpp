@@ -61,6 +61,12 @@ const Choices<ContactSpec::MasterEdge>& masterEdges() {
   return choices;
 }
 
+const Choices<ContactSpec::Integration>& contactIntegrations() {
+  static const Choices<ContactSpec::Integration> choices = {
+      {"gauss", ContactSpec::Integration::Gauss}, {"segments", ContactSpec::Integration::Segments}};
+  return choices;
+}
+
 const Choices<NewtonSpec::Criterion>& convergenceCriteria() {
   static const Choices<NewtonSpec::Criterion> choices = {
       {"energy", NewtonSpec::Criterion::Energy},

@@ -42,6 +42,7 @@ const Choices<ContactSpec::Kind>& contactKinds();
 const Choices<ContactSpec::Enforcement>& contactEnforcements();
 const Choices<ContactSpec::MasterSurface>& masterSurfaces();
 const Choices<ContactSpec::MasterEdge>& masterEdges();
+const Choices<ContactSpec::Integration>& contactIntegrations();
 const Choices<NewtonSpec::Criterion>& convergenceCriteria();
 const Choices<LinearSolverSpec::Method>& linearSolverMethods();
 const Choices<bool TangentPartsSpec::*>& tangentParts();  // snake_case field names

@@ -188,6 +188,7 @@ contact::ContactPairConfig pairConfig(const ContactSpec& spec) {
   config.parts = contactTangentParts(spec.parts);
   config.smoothMaster = spec.masterSurface == ContactSpec::MasterSurface::Smooth;
   config.fadingEdges = spec.masterEdge == ContactSpec::MasterEdge::Fade;
+  config.segmentIntegration = spec.integration == ContactSpec::Integration::Segments;
   return config;
 }
 

@@ -137,6 +137,11 @@ struct ContactSpec {
   // of the segment beyond it (contact/contact_point.hpp, kFreeEdgeBand; issue 14).
   enum class MasterEdge { Sharp, Fade };
   MasterEdge masterEdge = MasterEdge::Sharp;
+  // STS only. Gauss: integrationPoints^2 Gauss points per slave segment, as in the paper.
+  // Segments: points on the pieces of each slave segment's overlap with the master segments,
+  // rebuilt every step (contact/segmentation.hpp), issue 16 part 1.
+  enum class Integration { Gauss, Segments };
+  Integration integration = Integration::Gauss;
   SourceLocation where;
 };
 

@@ -141,6 +141,21 @@ TEST(VerificationPatchTest, NonMatchingMeshesReportTheirDeviation) {
   }
 }
 
+TEST(VerificationPatchTest, StsWithSegmentsOnNonMatchingMeshesIsUniform) {
+  // integration=segments (issue 16, part 1): target 1e-6 relative in the point pressure. The same
+  // mesh with Gauss points (patch_test_sts.deck, the test above) deviates by 0.29 point-wise and
+  // 5.4e-3 node-wise.
+  const VerifiedRun r = runVerificationDeck(kDecks + "patch_test_sts_segments.deck");
+  expectCompleted(r);
+  const double point = r["contact:interface:pressure_deviation"].error;
+  const double nodal = r["contact:interface:nodal_pressure_deviation"].error;
+  RecordProperty("point_pressure_deviation", std::to_string(point));
+  RecordProperty("nodal_pressure_deviation", std::to_string(nodal));
+  EXPECT_LT(point, 1e-6);
+  EXPECT_LT(nodal, 1e-6);
+  EXPECT_LT(std::abs(r["reaction:upper_top:z"].relativeError), 1e-5);
+}
+
 // Patch test on matching meshes: the blocks (compliance 2T/(E W^2) = 1e-3) and the penalty
 // (1/(eps W^2)) in series, so the force error is F x / (1 + x) with x = E W^2 / (2 T eps), and the
 // penetration p / eps_N: both fall like 1/eps_N.

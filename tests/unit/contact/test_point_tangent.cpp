@@ -6,9 +6,11 @@
 #include <Eigen/Core>
 #include <cmath>
 #include <functional>
+#include <tuple>
 #include <unsupported/Eigen/AutoDiff>
 
 #include "contact/point_evaluation.hpp"
+#include "contact/segmentation.hpp"
 #include "contact/tangent_parts.hpp"
 
 namespace cc::contact {
@@ -132,10 +134,11 @@ PointCase nodeToSegment(const NodeMatrix<double>& master, shape::SurfaceType typ
   return c;
 }
 
-// STS: Gauss point `gauss` of a slave Quad4 against `master`.
+// STS: the point `gauss` with parametric weight `weight` of a slave Quad4 against `master`.
 PointCase segmentToSegment(const NodeMatrix<double>& master, shape::SurfaceType type,
                            double friction, double slipScale, double traction, bool freezeArea,
-                           double depth = 0.003, const NodalNormals* normals = nullptr) {
+                           double depth = 0.003, const NodalNormals* normals = nullptr,
+                           const Vector2d& gauss = Vector2d(0.31, -0.57), double weight = 1.0) {
   PointCase c;
   c.setup.kind = PointKind::SegmentToSegment;
   c.setup.layout = makeLayout(type, 4);
@@ -143,13 +146,12 @@ PointCase segmentToSegment(const NodeMatrix<double>& master, shape::SurfaceType 
     c.setup.layout.smoothMaster = true;
     c.setup.layout.masterNormals = *normals;
   }
-  const Vector2d gauss(0.31, -0.57);
   const shape::SurfaceShape<double> shape =
       shape::surfaceShape(shape::SurfaceType::Quad4, gauss[0], gauss[1]);
   for (int a = 0; a < 4; ++a) c.setup.layout.slaveShape[a] = shape.value[a];
   c.setup.slave.segmentType = shape::SurfaceType::Quad4;
   c.setup.slave.gaussPoint = gauss;
-  c.setup.slave.gaussWeight = 1.0;
+  c.setup.slave.gaussWeight = weight;
   c.setup.law = law(friction);
   c.nodes.resize(3, c.setup.layout.nodeCount);
   c.nodes.leftCols(c.setup.layout.masterCount) = master;
@@ -405,6 +407,78 @@ TEST(ExactTangent, MatchesFiniteDifferencesForAllKindsAndStates) {
     EXPECT_LT(relativeError(tangent(e.c, TangentMode::Exact, {}), finiteDifferenceTangent(e.c)),
               1e-6);
   }
+}
+
+// ---- integration=segments (issue 16, part 1): a slave segment split by a master edge --------
+
+// Two flat master Quad4 segments (normal +z) sharing the edge from (0.1, -0.9) to (0.05, 1.1),
+// which crosses the slave segment of slaveQuad4.
+NodeMatrix<double> masterLeftOfEdge() {
+  NodeMatrix<double> nodes(3, 4);
+  nodes << -2.0, 0.1, 0.05, -2.1,  //
+      -1.0, -0.9, 1.1, 0.8,        //
+      0, 0, 0, 0;
+  return nodes;
+}
+
+NodeMatrix<double> masterRightOfEdge() {
+  NodeMatrix<double> nodes(3, 4);
+  nodes << 0.1, 2.0, 2.1, 0.05,  //
+      -0.9, -1.0, 1.0, 1.1,      //
+      0, 0, 0, 0;
+  return nodes;
+}
+
+// The segmented points of the slave: each is an ordinary STS point, so the paper's normal part
+// (frictionless, ds constant) is exact up to O(g^2) and the exact tangent matches central
+// differences, in stick and in slip, on either side of the master edge.
+TEST(SegmentedSts, PointsOfASlaveSegmentSplitByAMasterEdgeHaveTheKernelsTangents) {
+  constexpr double kDepth = 0.003;
+  const NodeMatrix<double> masters[2] = {masterLeftOfEdge(), masterRightOfEdge()};
+  const NodeMatrix<double> slave = slaveQuad4(kDepth);
+  std::vector<Polygon2> images;
+  for (const NodeMatrix<double>& m : masters) {
+    const std::optional<Polygon2> image = masterImage(shape::SurfaceType::Quad4, slave, m);
+    ASSERT_TRUE(image.has_value());
+    images.push_back(*image);
+  }
+  const std::vector<SegmentPoint> points = segmentPoints(images, 2);
+  int onSide[2] = {0, 0};
+  int stick = 0, slip = 0;
+  for (const SegmentPoint& p : points) {
+    SCOPED_TRACE(testing::Message() << "point " << p.xi.transpose() << " on master " << p.image);
+    ASSERT_GE(p.image, 0);
+    ++onSide[p.image];
+    const NodeMatrix<double>& master = masters[p.image];
+    // The slave is slightly warped: penetrate by `depth` at this point (as in the STS test
+    // above).
+    const PointCase probe = segmentToSegment(master, shape::SurfaceType::Quad4, 0, 0, 0, true, 0.0,
+                                             nullptr, p.xi, p.weight);
+    const double height = evaluatePoint(probe.setup, probe.nodes).kinematics.gap;
+    expectNormalTangentExactUpToSecondOrder(
+        [&](double depth) {
+          return segmentToSegment(master, shape::SurfaceType::Quad4, 0, 0, 0, true, depth + height,
+                                  nullptr, p.xi, p.weight);
+        },
+        4e-3);
+    for (const auto& [friction, slipScale, traction] :
+         {std::tuple{0.5, 1e-3, 1.0}, std::tuple{0.3, 5e-2, 2.0}}) {
+      const PointCase c = segmentToSegment(master, shape::SurfaceType::Quad4, friction, slipScale,
+                                           traction, false, kDepth, nullptr, p.xi, p.weight);
+      const ContactState state = stateOf(c);
+      ASSERT_NE(state, ContactState::Open);
+      (state == ContactState::Stick ? stick : slip) += 1;
+      EXPECT_LT(relativeError(tangent(c, TangentMode::Exact, {}), finiteDifferenceTangent(c)),
+                1e-6);
+    }
+  }
+  // The edge splits the slave (3-point rules on the pieces, not the 4 Gauss points), both
+  // masters get points, and both states were exercised.
+  EXPECT_GT(points.size(), 4u);
+  EXPECT_GT(onSide[0], 0);
+  EXPECT_GT(onSide[1], 0);
+  EXPECT_GT(stick, 0);
+  EXPECT_GT(slip, 0);
 }
 
 // ---- a slave point beyond the master's free edge with edge=fade (issue 14) -------------------
