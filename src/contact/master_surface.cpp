@@ -125,13 +125,15 @@ void MasterSurface::updateNormals(const Eigen::Matrix3Xd& coordinates) {
     const double length = nodalNormals_.col(n).norm();
     if (length > 0) nodalNormals_.col(n) /= length;
   }
-  // Per edge, from the same configuration: shared edges get the same scale from both sides.
-  tangentialScales_.resize(segmentCount());
+  // Per edge, from the same configuration and held fixed over the step with the normals (as a
+  // vector, see nagataFixedTangentialTerm): shared edges get the same term from both sides (with
+  // the edge's direction reversed, the chord, dv and the term all change sign).
+  fixedCorrections_.resize(segmentCount());
   for (int s = 0; s < segmentCount(); ++s) {
     for (int e = 0; e < 4; ++e) {
       const int i = segments_(s, nagataEdgeStart(e)), j = segments_(s, nagataEdgeEnd(e));
-      tangentialScales_[s][e] = nagataTangentialScale(nodalNormals_.col(i), nodalNormals_.col(j),
-                                                      coordinates.col(j) - coordinates.col(i));
+      fixedCorrections_[s][e] = nagataFixedTangentialTerm(
+          nodalNormals_.col(i), nodalNormals_.col(j), coordinates.col(j) - coordinates.col(i));
     }
   }
 }
@@ -139,7 +141,8 @@ void MasterSurface::updateNormals(const Eigen::Matrix3Xd& coordinates) {
 NodalNormals MasterSurface::segmentNormals(int segment) const {
   NodalNormals normals;
   for (int k = 0; k < 4; ++k) normals[k] = nodalNormals_.col(segments_(segment, k));
-  normals.tangentialScale = tangentialScales_[segment];
+  normals.tangentialScale = {0, 0, 0, 0};  // the second term is in fixedCorrection
+  normals.fixedCorrection = fixedCorrections_[segment];
   return normals;
 }
 

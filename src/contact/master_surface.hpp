@@ -86,7 +86,8 @@ class MasterSurface {
   bool smooth_ = false;
   bool fadingEdges_ = false;
   Eigen::Matrix3Xd nodalNormals_;                        // per mesh node (zero off the surface)
-  std::vector<std::array<double, 4>> tangentialScales_;  // per segment edge (nagata.hpp)
+  // Per segment edge, the tangential term of Nagata's c (nagata.hpp) from updateNormals().
+  std::vector<std::array<Eigen::Vector3d, 4>> fixedCorrections_;
   Connectivity segments_;
   std::vector<std::array<int, 4>> neighbours_;
   double typicalSize_ = 1;

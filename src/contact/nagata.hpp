@@ -54,8 +54,16 @@ inline Eigen::Matrix3d nagataEdgeMatrix(const Eigen::Vector3d& n0, const Eigen::
 // vanishes and the patch folds (on the meshed trough of smooth_master.md a fold turned the
 // normal over: gaps of -0.1 and a singular tangent). The scale caps the term at
 // kMaxAsymmetry |d|, which leaves Nagata's interpolation untouched wherever the normals are
-// consistent with the chord. It is computed with the normals (from the configuration at the
-// step's start) and held fixed over the step like them, so c stays linear in the nodes.
+// consistent with the chord.
+//
+// On a master that deforms within the step the term must be held fixed with the normals as a
+// vector (nagataFixedTangentialTerm), not as this scale: as a matrix, (d . v)/dc dv has the
+// gain 1/|dv| on the chord's normal component, unbounded where the nodal normals are nearly
+// parallel (the straight generators of a cylindrical die, whose normals differ by the die's
+// elastic rotation, 1e-7). There a rotation of the chord by 1e-6 within the step (the die's
+// deformation in the first Newton update) turned a term capped at 0.125 at the step's start
+// into one of length 3.5 on an edge of 0.5: the patch folded and the closest-point projection
+// on it cycled (ironing, issue 14; NagataPatch.ProjectionOnIroningDieSegmentAfterElasticRotation).
 inline double nagataTangentialScale(const Eigen::Vector3d& n0, const Eigen::Vector3d& n1,
                                     const Eigen::Vector3d& chord) {
   constexpr double kMaxAsymmetry = 0.25;
@@ -65,11 +73,36 @@ inline double nagataTangentialScale(const Eigen::Vector3d& n0, const Eigen::Vect
   return kMaxAsymmetry * chord.norm() * dvLength / tangential;
 }
 
+// The second term of c, s (d . v)/dc dv with the cap s of nagataTangentialScale, for the chord
+// d = x_j - x_i of the configuration the normals are taken from (the step's start). Held fixed
+// over the step like the normals: c = C_e d + this term, with C_e the first term alone
+// (tangentialScale 0), so c stays affine in the nodes (their shape matrices are those of the
+// first term) and bounded by kMaxAsymmetry |d| however the nodes move within the step.
+// Its direction is that of dv = (n0 - n1)/2, which carries no information where the normals
+// differ by less than kDirectionless (radians, half the angle between them): on the straight
+// generators of the ironing die they differ by the die's elastic deformation (1e-7), and a
+// term there, however capped, bent the edge sideways in a direction that changed from step to
+// step (slab elements inverted at the start of a press step). Such an edge stays straight, as
+// Nagata's rule makes exactly parallel ones.
+inline Eigen::Vector3d nagataFixedTangentialTerm(const Eigen::Vector3d& n0,
+                                                 const Eigen::Vector3d& n1,
+                                                 const Eigen::Vector3d& chord) {
+  constexpr double kDirectionless = 1e-3;
+  const Eigen::Vector3d v = 0.5 * (n0 + n1);
+  const Eigen::Vector3d dv = 0.5 * (n0 - n1);
+  const double dc = n0.dot(dv);
+  if (dv.norm() < kDirectionless) return Eigen::Vector3d::Zero();
+  return nagataTangentialScale(n0, n1, chord) * chord.dot(v) / dc * dv;
+}
+
 // Nodal normals of a Quad4 master segment, in its node order (unit vectors, outward on the
 // master, i.e. pointing to the slave side), and the tangential scale of each edge.
 struct NodalNormals {
   std::array<Eigen::Vector3d, 4> normal;
   std::array<double, 4> tangentialScale{1, 1, 1, 1};
+  // Per edge, a correction added to C_e d (nagataFixedTangentialTerm; zero: c = C_e d).
+  std::array<Eigen::Vector3d, 4> fixedCorrection{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(),
+                                                 Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
   Eigen::Vector3d& operator[](int k) { return normal[k]; }
   const Eigen::Vector3d& operator[](int k) const { return normal[k]; }
   auto begin() { return normal.begin(); }
@@ -119,7 +152,8 @@ Eigen::Matrix<Scalar, 3, 1> transposeTimes(const Eigen::Matrix3d& C,
   return v;
 }
 
-// The edge corrections c_e = C_e (x_j - x_i) of a segment with corners `nodes` (3 x 4).
+// The edge corrections c_e = C_e (x_j - x_i) + fixedCorrection_e of a segment with corners
+// `nodes` (3 x 4).
 template <class Scalar>
 std::array<Eigen::Matrix<Scalar, 3, 1>, 4> nagataCorrections(
     const Eigen::Matrix<Scalar, 3, Eigen::Dynamic>& nodes, const NodalNormals& normals) {
@@ -128,6 +162,7 @@ std::array<Eigen::Matrix<Scalar, 3, 1>, 4> nagataCorrections(
     const int i = nagataEdgeStart(e), j = nagataEdgeEnd(e);
     const Eigen::Matrix<Scalar, 3, 1> chord = nodes.col(j) - nodes.col(i);
     c[e] = transposeTimes<Scalar>(normals.edgeMatrix(e).transpose(), chord);
+    for (int a = 0; a < 3; ++a) c[e][a] += normals.fixedCorrection[e][a];
   }
   return c;
 }

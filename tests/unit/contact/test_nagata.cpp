@@ -9,6 +9,7 @@
 #include <Eigen/Core>
 #include <cmath>
 #include <functional>
+#include <limits>
 
 #include "contact/geometry.hpp"
 #include "contact/master_surface.hpp"
@@ -305,6 +306,94 @@ TEST(NagataPatch, ProjectionAndNodalNormalsOnMeshedCylinder) {
   EXPECT_LT(std::abs(f.rhoCov[1].dot(point - f.rho)), 1e-12);
   // The smoothed surface is within O(h^4) of the cylinder: the distance found is 0.2 up to that.
   EXPECT_NEAR(found.distance, std::hypot(point.x(), point.z()) - 1, 1e-5);
+}
+
+// The segment of the ironing die (input/stress/ironing, STS, surface=smooth, issue 14) on which
+// the closest-point projection of slave point 140 broke down at the first iterations of step 2:
+// nodes and angle-weighted nodal normals at the step's start (the normals of the straight
+// generators, edges 0 and 2 along y, differ by the die's elastic rotation, ~1e-7), the nodes
+// after the first Newton update (the die moved 0.07 down and rotated its generators by ~1e-6),
+// and the slave point, as the run printed them.
+struct IroningDieSegment {
+  NodeMatrix<double> start{3, 4}, current{3, 4};
+  NodalNormals normals;
+  Vector3d point{2.3988644193601987, 1.610139582762278, 2.9422543941260719};
+  Vector2d facetedXi{-0.5594014820889327, -0.32380818819550972};
+  IroningDieSegment() {
+    start << 2.2742341292006305, 2.2742341826088452, 2.6343922187153561, 2.6343921960770764,
+        1.4999994556432377, 1.9999999999999993, 2.0000000000000009, 1.499997964427668,
+        3.0191131690450885, 3.0191131935063393, 2.9523638983020661, 2.9523639566076141;
+    current << 2.2741858244846016, 2.2741857046160141, 2.6343708270306325, 2.634371270573634,
+        1.5000040538270432, 1.9999999689902499, 2.0000009369192182, 1.4999540366723558,
+        2.949119566476889, 2.9491236175289033, 2.8824505226513693, 2.8824500681553511;
+    normals[0] = Vector3d(-0.2419187157089408, 1.3046024641976233e-07, -0.97029651910625747);
+    normals[1] = Vector3d(-0.24191877534422079, -6.4576438440762932e-16, -0.97029650423772651);
+    normals[2] = Vector3d(-0.12186627991026694, -1.0823826837747496e-16, -0.99254652778639674);
+    normals[3] = Vector3d(-0.12186641142920634, -1.5852853946395729e-07, -0.992546511638292);
+  }
+  Vector3d chord(const NodeMatrix<double>& x, int e) const {
+    return x.col(nagataEdgeEnd(e)) - x.col(nagataEdgeStart(e));
+  }
+};
+
+TEST(NagataPatch, ProjectionOnIroningDieSegmentAfterElasticRotation) {
+  const IroningDieSegment die;
+  // The cause: held as a scale of the linear term, the tangential term of edge 2 (capped at
+  // a quarter of the chord at the step's start) grows with the current chord's normal
+  // component by the gain 1/|dv| ~ 1e7 to several chord lengths: the patch folds.
+  NodalNormals asScale = die.normals;
+  for (int e = 0; e < 4; ++e) {
+    asScale.tangentialScale[e] = nagataTangentialScale(
+        die.normals[nagataEdgeStart(e)], die.normals[nagataEdgeEnd(e)], die.chord(die.start, e));
+  }
+  const auto scaled = nagataCorrections<double>(die.current, asScale);
+  EXPECT_GT(scaled[2].norm(), 4 * die.chord(die.current, 2).norm());
+  // The fix: the term held fixed as the vector of the step's start, at most a quarter chord.
+  NodalNormals fixed = die.normals;
+  for (int e = 0; e < 4; ++e) {
+    fixed.tangentialScale[e] = 0;
+    fixed.fixedCorrection[e] = nagataFixedTangentialTerm(
+        die.normals[nagataEdgeStart(e)], die.normals[nagataEdgeEnd(e)], die.chord(die.start, e));
+  }
+  const auto corrections = nagataCorrections<double>(die.current, fixed);
+  for (int e = 0; e < 4; ++e) {
+    EXPECT_LE(corrections[e].norm(), 0.25 * die.chord(die.current, e).norm() + 1e-9) << e;
+  }
+  const ProjectionResult p =
+      closestPointProjection(shape::SurfaceType::Quad4, die.current, die.point, die.facetedXi,
+                             {}, &fixed);
+  ASSERT_TRUE(p.converged);
+  ASSERT_TRUE(p.inside());
+  // Orthogonality (eq. (23)): rho_i . (r - rho) = 0, relative to |rho_i| |r - rho|.
+  const SurfaceFrame<double> f =
+      surfaceFrame<double>(shape::SurfaceType::Quad4, die.current, p.xi[0], p.xi[1], &fixed);
+  const double distance = (die.point - f.rho).norm();
+  for (int i = 0; i < 2; ++i) {
+    EXPECT_LT(std::abs(f.rhoCov[i].dot(die.point - f.rho)), 1e-12 * f.rhoCov[i].norm() * distance);
+  }
+  // The closest point of the whole patch: no point of a 401 x 401 sampling of [-1, 1]^2 is
+  // closer, and the nearest sample lies next to the projection.
+  double nearest = std::numeric_limits<double>::infinity();
+  Vector2d nearestXi;
+  for (int a = 0; a <= 400; ++a) {
+    for (int b = 0; b <= 400; ++b) {
+      const Vector2d xi(-1 + a / 200.0, -1 + b / 200.0);
+      Vector3d rho;
+      std::array<Vector3d, 2> tangents;
+      interpolateSegment(shape::SurfaceType::Quad4, die.current, &fixed, xi[0], xi[1], rho,
+                         tangents, nullptr);
+      if ((die.point - rho).norm() < nearest) nearest = (die.point - rho).norm(), nearestXi = xi;
+    }
+  }
+  EXPECT_GE(nearest, distance - 1e-14);
+  EXPECT_LT((nearestXi - p.xi).norm(), 2.0 / 200);
+  // And it lies between the facet and the die's cylinder (R = 3, 7 degrees per segment): within
+  // the sagitta R (1 - cos 3.5 deg) = 0.0056 of the faceted distance.
+  const ProjectionResult flat =
+      closestPointProjection(shape::SurfaceType::Quad4, die.current, die.point, die.facetedXi);
+  const SurfaceFrame<double> facet =
+      surfaceFrame<double>(shape::SurfaceType::Quad4, die.current, flat.xi[0], flat.xi[1]);
+  EXPECT_LT(std::abs(distance - (die.point - facet.rho).norm()), 0.0056);
 }
 
 }  // namespace
