@@ -85,7 +85,7 @@ class MasterSurface {
   shape::SurfaceType type_ = shape::SurfaceType::Quad4;
   bool smooth_ = false;
   bool fadingEdges_ = false;
-  Eigen::Matrix3Xd nodalNormals_;                        // per mesh node (zero off the surface)
+  Eigen::Matrix3Xd nodalNormals_;  // per mesh node (zero off the surface)
   // Per segment edge, the tangential term of Nagata's c (nagata.hpp) from updateNormals().
   std::vector<std::array<Eigen::Vector3d, 4>> fixedCorrections_;
   Connectivity segments_;

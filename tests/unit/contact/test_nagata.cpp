@@ -359,9 +359,8 @@ TEST(NagataPatch, ProjectionOnIroningDieSegmentAfterElasticRotation) {
   for (int e = 0; e < 4; ++e) {
     EXPECT_LE(corrections[e].norm(), 0.25 * die.chord(die.current, e).norm() + 1e-9) << e;
   }
-  const ProjectionResult p =
-      closestPointProjection(shape::SurfaceType::Quad4, die.current, die.point, die.facetedXi,
-                             {}, &fixed);
+  const ProjectionResult p = closestPointProjection(shape::SurfaceType::Quad4, die.current,
+                                                    die.point, die.facetedXi, {}, &fixed);
   ASSERT_TRUE(p.converged);
   ASSERT_TRUE(p.inside());
   // Orthogonality (eq. (23)): rho_i . (r - rho) = 0, relative to |rho_i| |r - rho|.
