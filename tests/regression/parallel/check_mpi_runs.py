@@ -181,6 +181,35 @@ def crossing_case(args):
           f"{crossings} point-steps onto another process's master segments")
 
 
+def segments_case(args):
+    """The crossing deck with integration=segments (issue 16, part 1): the base's 4 slave
+    segments are split by the block's 20 master segments, the points are rebuilt every step
+    (their number changes as the block slides), and each process evaluates its share k mod P of
+    that changing list. Same steps, iterations and forces as the serial run."""
+    source = os.path.join(args.source, "tests/regression/parallel/decks")
+    with open(os.path.join(source, "block_crossing_partition.deck")) as stream:
+        text = stream.read()
+    mesh = "../../../../meshes/block_on_base.geo"
+    check(mesh in text and "name=interface" in text, "the crossing deck changed")
+    deck = os.path.join(args.scratch, "segments.deck")
+    with open(deck, "w") as stream:
+        stream.write(text.replace(mesh, os.path.normpath(os.path.join(source, mesh)))
+                     .replace("name=interface", "integration=segments name=interface"))
+    serial = os.path.join(args.scratch, "serial.h5")
+    distributed = os.path.join(args.scratch, "two.h5")
+    run_ok(args, 1, "run", deck, "-o", serial)
+    run_ok(args, 2, "run", deck, "-o", distributed)
+    with h5py.File(serial, "r") as h5:
+        counts = {int(h5["steps"][n].attrs["step"]): h5["steps"][n]["contact/interface/gap"].shape[0]
+                  for n in step_names(h5)}
+    check(len(set(counts.values())) > 1,
+          f"the number of segment points never changed: {counts}; the case tests nothing")
+    count, worst = compare_steps(serial, distributed)
+    same_layout(serial, distributed)
+    print(f"2 processes, integration=segments: {count} steps as serial (largest difference "
+          f"{worst:.1e}); points per step {min(counts.values())}-{max(counts.values())}")
+
+
 def rank_processes(launcher):
     """The covcontact processes mpirun started (its children)."""
     listed = subprocess.run(["pgrep", "-P", str(launcher.pid)], capture_output=True, text=True)
@@ -306,11 +335,13 @@ def main():
     parser.add_argument("--mpirun", required=True)
     parser.add_argument("--source", required=True, help="the source tree")
     parser.add_argument("--scratch", required=True)
-    parser.add_argument("--case", required=True, choices=["crossing", "restart", "errors"])
+    parser.add_argument("--case", required=True,
+                        choices=["crossing", "restart", "errors", "segments"])
     args = parser.parse_args()
     shutil.rmtree(args.scratch, ignore_errors=True)
     os.makedirs(args.scratch)
-    {"crossing": crossing_case, "restart": restart_case, "errors": errors_case}[args.case](args)
+    {"crossing": crossing_case, "restart": restart_case, "errors": errors_case,
+     "segments": segments_case}[args.case](args)
 
 
 if __name__ == "__main__":
