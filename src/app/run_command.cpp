@@ -345,7 +345,13 @@ int runCommand(const RunOptions& options) {
       if (writes) std::cerr << message << "\n";
       return code;
     }
-    partition = model->distribute(group);
+    try {
+      partition = model->distribute(group);
+    } catch (const InputError& error) {
+      // A deck option not available on several processes: every process finds it the same way.
+      if (writes) std::cerr << error.what() << "\n";
+      return kExitInput;
+    }
   }
   const ProblemSpec& spec = model->spec();
   const bool quiet = options.quiet || !writes;

@@ -182,10 +182,11 @@ def crossing_case(args):
 
 
 def segments_case(args):
-    """The crossing deck with integration=segments (issue 16, part 1): the base's 4 slave
-    segments are split by the block's 20 master segments, the points are rebuilt every step
-    (their number changes as the block slides), and each process evaluates its share k mod P of
-    that changing list. Same steps, iterations and forces as the serial run."""
+    """integration=segments (issue 16, part 1) rebuilds its points every step with decisions that
+    jump where master and slave edges align; on the crossing deck, round-off differences between
+    1 and 2 processes changed the number of points (114 against 108 in step 3) and the iteration
+    counts. Until that is fixed a run on several processes refuses the option: exit 2, the deck's
+    file:line, said once; the serial run completes."""
     source = os.path.join(args.source, "tests/regression/parallel/decks")
     with open(os.path.join(source, "block_crossing_partition.deck")) as stream:
         text = stream.read()
@@ -195,19 +196,16 @@ def segments_case(args):
     with open(deck, "w") as stream:
         stream.write(text.replace(mesh, os.path.normpath(os.path.join(source, mesh)))
                      .replace("name=interface", "integration=segments name=interface"))
-    serial = os.path.join(args.scratch, "serial.h5")
-    distributed = os.path.join(args.scratch, "two.h5")
-    run_ok(args, 1, "run", deck, "-o", serial)
-    run_ok(args, 2, "run", deck, "-o", distributed)
-    with h5py.File(serial, "r") as h5:
-        counts = {int(h5["steps"][n].attrs["step"]): h5["steps"][n]["contact/interface/gap"].shape[0]
-                  for n in step_names(h5)}
-    check(len(set(counts.values())) > 1,
-          f"the number of segment points never changed: {counts}; the case tests nothing")
-    count, worst = compare_steps(serial, distributed)
-    same_layout(serial, distributed)
-    print(f"2 processes, integration=segments: {count} steps as serial (largest difference "
-          f"{worst:.1e}); points per step {min(counts.values())}-{max(counts.values())}")
+    line = 1 + text.splitlines().index(next(l for l in text.splitlines() if "name=interface" in l))
+    run_ok(args, 1, "run", deck, "-o", os.path.join(args.scratch, "serial.h5"))
+    result = run(args, 2, "run", deck, "-o", os.path.join(args.scratch, "two.h5"))
+    check(result.returncode == EXIT["input"],
+          f"2 processes: exit {result.returncode}, expected {EXIT['input']}\n{result.stderr}")
+    where = f"{deck}:{line}"
+    check(result.stderr.count("integration=segments is not available on several processes") == 1
+          and where in result.stderr,
+          f"2 processes: the refusal is not said once with {where}:\n{result.stderr}")
+    print(f"2 processes refuse integration=segments at {where}; 1 process completes")
 
 
 def rank_processes(launcher):
