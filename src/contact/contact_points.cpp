@@ -63,25 +63,28 @@ std::vector<PairPoint> nodeToSegmentPoints(const Mesh& mesh, const FaceSet& slav
 
 std::vector<PairPoint> segmentToSegmentPoints(const FaceSet& slave, int integrationPoints) {
   std::vector<PairPoint> points;
-  const shape::SurfaceType type = segmentTypeOf(slave);
   const auto rule = gaussQuad(integrationPoints);
   for (int face = 0; face < slave.connectivity.rows(); ++face) {
-    for (const auto& q : rule) {
-      PairPoint p;
-      p.slaveFace = face;
-      const shape::SurfaceShape<double> shape = shape::surfaceShape(type, q.xi[0], q.xi[1]);
-      p.slaveCount = shape.count;
-      for (int k = 0; k < shape.count; ++k) {
-        p.slaveNodes[k] = slave.connectivity(face, k);
-        p.slaveShape[k] = shape.value[k];
-      }
-      p.slave.segmentType = type;
-      p.slave.gaussPoint = q.xi;
-      p.slave.gaussWeight = q.weight;
-      points.push_back(p);
-    }
+    for (const auto& q : rule) points.push_back(slaveSegmentPoint(slave, face, q.xi, q.weight));
   }
   return points;
+}
+
+PairPoint slaveSegmentPoint(const FaceSet& slave, int face, const Eigen::Vector2d& xi,
+                            double weight) {
+  const shape::SurfaceType type = segmentTypeOf(slave);
+  PairPoint p;
+  p.slaveFace = face;
+  const shape::SurfaceShape<double> shape = shape::surfaceShape(type, xi[0], xi[1]);
+  p.slaveCount = shape.count;
+  for (int k = 0; k < shape.count; ++k) {
+    p.slaveNodes[k] = slave.connectivity(face, k);
+    p.slaveShape[k] = shape.value[k];
+  }
+  p.slave.segmentType = type;
+  p.slave.gaussPoint = xi;
+  p.slave.gaussWeight = weight;
+  return p;
 }
 
 std::vector<PairPoint> segmentToAnalyticalPoints(const FaceSet& master, int integrationPoints) {

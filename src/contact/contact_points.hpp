@@ -85,6 +85,10 @@ struct PairPoint {
 std::vector<PairPoint> nodeToSegmentPoints(const Mesh& mesh, const FaceSet& slave);
 // STS: integrationPoints^2 Gauss points per slave segment.
 std::vector<PairPoint> segmentToSegmentPoints(const FaceSet& slave, int integrationPoints);
+// One STS point of slave segment `face` at parameter xi with parametric weight `weight`: its
+// slave nodes and shape values (both STS point sets are built from it).
+PairPoint slaveSegmentPoint(const FaceSet& slave, int face, const Eigen::Vector2d& xi,
+                            double weight);
 // STS with integration=segments (segmentation.hpp, issue 16 part 1): the points of every slave
 // segment on its pieces of overlap with the master segments, for the coordinates x. Built from
 // x and the mesh alone, in the order of the slave faces, so every process of a run builds the

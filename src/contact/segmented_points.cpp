@@ -74,18 +74,7 @@ std::vector<PairPoint> segmentedSegmentToSegmentPoints(const FaceSet& slave,
     const NodeMatrix<double> slaveNodes = nodesOf(slave, face, x);
     const std::vector<Polygon2> images = overlappingImages(master, type, slaveNodes, x);
     for (const SegmentPoint& q : segmentPoints(images, integrationPoints)) {
-      PairPoint p;
-      p.slaveFace = face;
-      const shape::SurfaceShape<double> shape = shape::surfaceShape(type, q.xi[0], q.xi[1]);
-      p.slaveCount = shape.count;
-      for (int k = 0; k < shape.count; ++k) {
-        p.slaveNodes[k] = slave.connectivity(face, k);
-        p.slaveShape[k] = shape.value[k];
-      }
-      p.slave.segmentType = type;
-      p.slave.gaussPoint = q.xi;
-      p.slave.gaussWeight = q.weight;
-      points.push_back(p);
+      points.push_back(slaveSegmentPoint(slave, face, q.xi, q.weight));
     }
   }
   return points;
