@@ -18,7 +18,10 @@ constexpr double kSymmetryTolerance = 1e-12;
 
 ContactPair::ContactPair(ContactPairConfig config, const FaceSet& master,
                          std::vector<PairPoint> points)
-    : config_(std::move(config)), tracker_(master), points_(std::move(points)) {
+    : config_(std::move(config)),
+      tracker_(master),
+      points_(std::move(points)),
+      accelerator_(config_.accelerationDepth) {
   tracker_.setSmooth(config_.smoothMaster);
   tracker_.setFadingEdges(config_.fadingEdges);
   for (PairPoint& p : points_) buildItem(p);

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "contact/anderson_acceleration.hpp"
 #include "contact/contact_points.hpp"
 #include "contact/point_evaluation.hpp"
 #include "contact/segment_tracking.hpp"
@@ -33,6 +34,11 @@ struct ContactPairConfig {
   bool augmented = false;
   double augmentationTolerance = 1e-3;
   int maxAugmentations = 100;
+  int accelerationDepth = 5;  // Anderson depth of the Uzawa updates (0: plain Uzawa)
+  // The automatic penalty at eps_scale = 1 (model/automatic_penalty.hpp), also when the deck
+  // gives eps: a penalty below it tightens the stopping rule so that the penetration left is
+  // bounded as with this one (0: unknown, the rule uses eps itself).
+  double referencePenalty = 0;
   // Smoothed master (issue 16, part 2; NTS/STS with Quad4 masters): search, projection, gap,
   // normal and curvature on Nagata patches (nagata.hpp) over nodal normals taken from the
   // converged configuration at the start of each step and held fixed over it.
@@ -157,6 +163,7 @@ class ContactPair : public Contribution {
   double segmentsTime_ = 0;
   bool segmentsReady_ = false;
   int augmentations_ = 0;  // Uzawa updates in the current step
+  AndersonAcceleration accelerator_{0};  // of the Uzawa updates; reset at commit and cut-back
   std::string lastAugmentationMessage_;
   double stepDissipation_ = 0;
   double dissipatedEnergy_ = 0;  // since the start of this run (not part of the restart data)

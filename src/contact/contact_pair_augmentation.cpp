@@ -2,17 +2,18 @@
 // step. Within a Newton solve the multipliers are constants, so the paper's residual/tangent
 // split and the exact tangent are unchanged; only N = min(0, lambda_N + eps_N g) and the
 // traction the trial step starts from, Lambda_T = T^(n) carried to the current point plus A . rho_i
-// (eq. (51) applied to the augmentation A), carry them. After a converged solve:
-//   lambda_N <- N,  A <- A + (T - Lambda_T) at sticking points,
-// until the sum over points of w |N - lambda_N| plus, over sticking points, w |T - Lambda_T| is
-// at most aug_tol times the normal contact force sum w |N|. For a point in contact |N - lambda_N|
-// = eps_N |g| and for a sticking point |T - Lambda_T| = eps_T |Delta rho_t|: the rule bounds
-// the mean penetration and slip under stick by aug_tol (mean |N|) / eps. A sliding point needs no
-// tangential multiplier: its traction is mu |N| (the cone acts on the augmented N) in the direction
-// of the trial, so Lambda_T only steers that direction. Known limit
-// (docs/verification/augmented_lagrangian.md): on 6.1(b) in sliding, Uzawa stalls at an update of
-// about 1e-3 max|N| whatever the step size, so the step fails after aug_max updates and is cut
-// back.
+// (eq. (51) applied to the augmentation A), carry them. After a converged solve the Uzawa image
+//   lambda_N <- N,  A <- A + (T - Lambda_T) at sticking points
+// is combined with the last aug_depth images by Anderson acceleration (anderson_acceleration.hpp:
+// plain Uzawa contracts like k / (k + eps) per update, hundreds of updates at a soft penalty),
+// until the sum over points of w |N - lambda_N| plus, over sticking points, w |T - Lambda_T|,
+// each weighted by max(1, eps_ref / eps), is at most aug_tol times the normal contact force
+// sum w |N|. For a point in contact |N - lambda_N| = eps_N |g| and for a sticking one
+// |T - Lambda_T| = eps_T |Delta rho_t|: the rule bounds the mean penetration and slip under
+// stick by aug_tol (mean |N|) / max(eps, eps_ref), eps_ref the automatic penalty. A sliding point
+// needs no tangential multiplier: its traction is mu |N| (the cone acts on the augmented N) in
+// the direction of the trial, so Lambda_T only steers that direction. Measured limits:
+// docs/verification/augmented_lagrangian.md.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -26,7 +27,15 @@ ContactPair::Augmentation ContactPair::augment() {
   if (!config_.augmented) return Augmentation::Converged;
   // Integrated over the surface (weights w): the update of the contact force against the
   // contact force. A rule on the largest point update stalled at the corners of a pressed
-  // block, where the pressure is singular and its multiplier converges slowest.
+  // block, where the pressure is singular and its multiplier converges slowest. An update is
+  // eps |g| (eps |Delta rho_t| under stick); weighting it by eps_ref / eps where eps is below
+  // the automatic penalty eps_ref bounds the penetration left by aug_tol |N| / max(eps,
+  // eps_ref): the same bound for every softer penalty, so that the results do not depend on it.
+  const double normalWeight = std::max(1.0, config_.referencePenalty / config_.law.penaltyNormal);
+  const double tangentialWeight =
+      config_.law.penaltyTangential > 0
+          ? std::max(1.0, config_.referencePenalty / config_.law.penaltyTangential)
+          : 1.0;
   double force = 0, update = 0;
   for (const PairPoint& point : points_) {
     const PointTrial& t = point.trial;
@@ -34,8 +43,9 @@ ContactPair::Augmentation ContactPair::augment() {
     const bool active = t.state != ContactState::Open;
     const double normal = active ? t.normalTraction : 0.0;
     force += t.weight * std::abs(normal);
-    update += t.weight * std::abs(normal - point.multiplierNormal);
-    if (t.state == ContactState::Stick) update += t.weight * (t.traction - t.tractionBase).norm();
+    update += normalWeight * t.weight * std::abs(normal - point.multiplierNormal);
+    if (t.state == ContactState::Stick)
+      update += tangentialWeight * t.weight * (t.traction - t.tractionBase).norm();
   }
   if (update <= config_.augmentationTolerance * force) return Augmentation::Converged;
   if (augmentations_ >= config_.maxAugmentations) {
@@ -45,12 +55,27 @@ ContactPair::Augmentation ContactPair::augment() {
         config_.name, augmentations_, update, force);
     return Augmentation::Failed;
   }
-  for (PairPoint& point : points_) {
+  // The Uzawa image of the multipliers (4 per point: lambda_N and the augmentation A), then
+  // Anderson's combination of the last images (aug_depth; 0 keeps plain Uzawa).
+  const std::size_t count = points_.size();
+  Eigen::VectorXd current(4 * count), image(4 * count), weights(4 * count);
+  for (std::size_t k = 0; k < count; ++k) {
+    const PairPoint& point = points_[k];
     const PointTrial& t = point.trial;
     const bool active = t.valid && t.state != ContactState::Open;
-    point.multiplierNormal = active ? t.normalTraction : 0.0;
-    if (t.valid && t.state == ContactState::Stick)
-      point.tractionAugmentation += t.traction - t.tractionBase;
+    Eigen::Vector3d augmentation = point.tractionAugmentation;
+    current.segment<4>(4 * k) << point.multiplierNormal, augmentation;
+    if (t.valid && t.state == ContactState::Stick) augmentation += t.traction - t.tractionBase;
+    image.segment<4>(4 * k) << (active ? t.normalTraction : 0.0), augmentation;
+    weights.segment<4>(4 * k).setConstant(t.valid ? t.weight : 0.0);
+  }
+  const Eigen::VectorXd next = accelerator_.next(current, image, weights);
+  for (std::size_t k = 0; k < count; ++k) {
+    PairPoint& point = points_[k];
+    // A compressive multiplier only (N = min(0, lambda_N + eps_N g)): a combination may
+    // overshoot to tension where the plain image would be 0.
+    point.multiplierNormal = std::min(0.0, next[4 * k]);
+    point.tractionAugmentation = next.segment<3>(4 * k + 1);
   }
   ++augmentations_;
   return Augmentation::Updated;
@@ -62,6 +87,7 @@ void ContactPair::commitAugmentation() {
     point.tractionAugmentation.setZero();  // T^(n+1) includes it
   }
   augmentations_ = 0;
+  accelerator_.reset();
 }
 
 void ContactPair::restoreAugmentation() {
@@ -70,6 +96,7 @@ void ContactPair::restoreAugmentation() {
     point.tractionAugmentation.setZero();
   }
   augmentations_ = 0;
+  accelerator_.reset();
 }
 
 }  // namespace cc::contact

@@ -219,6 +219,11 @@ KeywordDecl contactKeyword() {
            integerValue("aug_max", "augmented: Uzawa updates per step before the step fails")
                .withRange(Range::between(1, true, 10000, true))
                .withDefault("100"),
+           integerValue("aug_depth",
+                        "augmented: Anderson acceleration of the Uzawa updates, combining the "
+                        "last aug_depth updates (0: plain Uzawa)")
+               .withRange(Range::between(0, true, 50, true))
+               .withDefault("5"),
            numberValue("mu", "Coulomb friction coefficient (0: frictionless)")
                .withRange(Range::atLeast(0))
                .withDefault("0"),

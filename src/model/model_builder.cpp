@@ -181,6 +181,7 @@ contact::ContactPairConfig pairConfig(const ContactSpec& spec) {
   config.augmented = spec.enforcement == ContactSpec::Enforcement::Augmented;
   config.augmentationTolerance = spec.augmentationTolerance;
   config.maxAugmentations = spec.maxAugmentations;
+  config.accelerationDepth = spec.accelerationDepth;
   config.integrationPoints = spec.integrationPoints;
   config.tangentMode = spec.tangentMode == ContactSpec::TangentMode::Exact
                            ? contact::TangentMode::Exact
@@ -214,13 +215,18 @@ void setAutomaticPenalty(const ContactSpec& spec, const Mesh& mesh,
                          contact::ContactPairConfig& config) {
   const bool normal = spec.penaltyNormal == 0;
   const bool tangential = spec.friction > 0 && spec.penaltyTangential == 0;
-  if (!normal && !tangential) return;
+  if (!normal && !tangential && !config.augmented) return;
   double stiffness = surfaceStiffness(mesh, mesh.faceSets.at(spec.master), blockYoung);
   if (spec.kind != ContactSpec::Kind::SegmentToAnalytical) {
     stiffness =
         std::min(stiffness, surfaceStiffness(mesh, mesh.faceSets.at(spec.slave), blockYoung));
   }
-  if (!std::isfinite(stiffness) || !(stiffness > 0)) {
+  const bool known = std::isfinite(stiffness) && stiffness > 0;
+  // The augmented Lagrangian's stopping rule measures penetration against the automatic
+  // penalty's whatever eps the deck gives (contact_pair_augmentation.cpp); unknown: 0.
+  config.referencePenalty = known ? kAutomaticPenaltyFactor * stiffness : 0.0;
+  if (!normal && !tangential) return;
+  if (!known) {
     throw InputError(spec.where,
                      fmt::format("contact '{}': no automatic penalty (no element with a Young's "
                                  "modulus behind its surfaces); give eps_n= and eps_t=",
