@@ -17,8 +17,8 @@ Eigen::VectorXd AndersonAcceleration::next(const Eigen::VectorXd& x, const Eigen
   const Eigen::VectorXd root = weights.cwiseMax(0.0).cwiseSqrt();
   auto norm = [&](const Eigen::VectorXd& v) { return root.cwiseProduct(v).norm(); };
   if (depth_ <= 0) return image;
-  const bool restart = !started_ || lastResidual_.size() != residual.size() ||
-                       norm(residual) > norm(lastResidual_);
+  const bool restart =
+      !started_ || lastResidual_.size() != residual.size() || norm(residual) > norm(lastResidual_);
   if (restart) {
     imageChanges_.clear();
     residualChanges_.clear();

@@ -162,7 +162,7 @@ class ContactPair : public Contribution {
   FaceSet slaveFaces_;
   double segmentsTime_ = 0;
   bool segmentsReady_ = false;
-  int augmentations_ = 0;  // Uzawa updates in the current step
+  int augmentations_ = 0;                // Uzawa updates in the current step
   AndersonAcceleration accelerator_{0};  // of the Uzawa updates; reset at commit and cut-back
   std::string lastAugmentationMessage_;
   double stepDissipation_ = 0;

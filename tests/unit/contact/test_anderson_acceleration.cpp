@@ -33,7 +33,8 @@ AffineMap softUzawaMap(int size) {
   const Eigen::MatrixXd random = Eigen::MatrixXd::Random(size, size);
   const Eigen::HouseholderQR<Eigen::MatrixXd> qr(random);
   const Eigen::MatrixXd basis = qr.householderQ();
-  return {basis * eigenvalues.asDiagonal() * basis.transpose(), Eigen::VectorXd::LinSpaced(size, -1, 1)};
+  return {basis * eigenvalues.asDiagonal() * basis.transpose(),
+          Eigen::VectorXd::LinSpaced(size, -1, 1)};
 }
 
 // Iterations until |x - x*| <= 1e-8 |x*|, at most `limit`.
