@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Issue 16 part 2: the smooth-master study's table (docs/verification/smooth_master.md).
 
-usage: smooth_master_table.py [--run] [--dir DIR] [--densities 8,16,32]
+usage: smooth_master_table.py [--run] [--dir DIR] [--densities 8,16,32] [--shell 16|64]
 
 With --run, runs input/verification/smooth_master/analytic.deck and trough_nx<N>_<faceted|smooth>.deck
 for each density in DIR (default: a temporary directory) with build/src/app/covcontact; then reads
@@ -149,31 +149,36 @@ def main():
     parser.add_argument("--run", action="store_true")
     parser.add_argument("--dir", default=None)
     parser.add_argument("--densities", default="8,16,32")
+    parser.add_argument("--shell", choices=["16", "64"], default="16",
+                        help="shell elements around the semi-cylinder: the study's decks (16) or "
+                             "their *_nt64 copies")
     args = parser.parse_args()
+    suffix = "" if args.shell == "16" else "_nt64"
     directory = args.dir or tempfile.mkdtemp(prefix="smooth_master_")
     densities = [int(n) for n in args.densities.split(",")]
     if args.run:
-        run("analytic.deck", directory)
+        run(f"analytic{suffix}.deck", directory)
         for n in densities:
             for kind in ("faceted", "smooth"):
-                run(f"trough_nx{n}_{kind}.deck", directory)
-    reference = read(os.path.join(directory, "analytic_reactions.csv"))
+                run(f"trough_nx{n}_{kind}{suffix}.deck", directory)
+    reference = read(os.path.join(directory, f"analytic{suffix}_reactions.csv"))
     t, its, f = reference
     analytic = sliding_mean(t, its)
     ratio, angle = coulomb(t, f)
     print(f"analytic (STAS): {analytic:.2f} iterations per spiral step, {sum(its)} in all; "
           f"Coulomb check: |F_t|/(mu N) off by {100 * ratio:.1f} %, angle {angle:.1f} deg")
-    finest = read(os.path.join(directory, f"trough_nx{max(densities)}_smooth_reactions.csv"))
+    finest = read(os.path.join(directory,
+                               f"trough_nx{max(densities)}_smooth{suffix}_reactions.csv"))
     print("| nx | h | master | force difference | to finest smooth | oscillation | "
           "faceted/smooth | iterations/step (analytic) | Coulomb: ratio, angle |")
     print("|---|---|---|---|---|---|---|---|---|")
     for n in densities:
-        result = {k: compare(directory, f"trough_nx{n}_{k}", reference)
+        result = {k: compare(directory, f"trough_nx{n}_{k}{suffix}", reference)
                   for k in ("faceted", "smooth")}
         for kind in ("faceted", "smooth"):
             r = result[kind]
             ratio = (f"{result['faceted']['osc'] / r['osc']:.1f}" if kind == "smooth" else "")
-            converged = compare(directory, f"trough_nx{n}_{kind}", finest)["diff"]
+            converged = compare(directory, f"trough_nx{n}_{kind}{suffix}", finest)["diff"]
             print(f"| {n} | {4 / n:.3g} | {kind} | {100 * r['diff']:.2f} % | "
                   f"{100 * converged:.2f} % | {100 * r['osc']:.3f} % | {ratio} | "
                   f"{r['its']:.2f} ({analytic:.2f}) | {100 * r['coulomb'][0]:.1f} %, "

@@ -141,5 +141,23 @@ TEST(smooth_master, contact_6_3_on_meshed_trough_against_analytic) {
   EXPECT_GT(facetedAngle, 2 * smoothAngle);
 }
 
+// The target "force history within 1 % of the analytic-surface run at a moderate mesh" needs
+// the shell resolved: with nt = 16 elements around the semi-cylinder the contact zone is
+// narrower than a shell element, and the meshed (sts) and analytic (stas) runs, which integrate
+// differently over that zone, differ by 7-8 % at every trough density, the analytic one off
+// Coulomb's law by 13.6 %. With nt = 64 (the *_nt64 decks) the smoothed coarsest trough (nx = 8,
+// h = 0.5) follows the analytic run to 0.15 % (faceted 30 %), with no more Newton iterations,
+// and the analytic run obeys Coulomb's law to 0.5 % and 0.5 degrees (measured; smooth_master.md).
+TEST(smooth_master, resolved_shell_follows_the_analytic_surface_within_one_percent) {
+  const History analytic = historyOf("analytic_nt64.deck");
+  const History smooth = historyOf("trough_nx8_smooth_nt64.deck");
+  ASSERT_EQ(smooth.time.size(), analytic.time.size());
+  EXPECT_LT(forceDifference(smooth, analytic), 0.01);
+  EXPECT_LE(smooth.iterationsPerSpiralStep, analytic.iterationsPerSpiralStep);
+  const auto [ratio, angle] = coulombDeviation(analytic);
+  EXPECT_LT(ratio, 0.01);
+  EXPECT_LT(angle, 1.0 * M_PI / 180);
+}
+
 }  // namespace
 }  // namespace cc::test
