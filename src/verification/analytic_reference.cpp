@@ -190,7 +190,8 @@ AnalyticComparison sphereComparison(const ReferenceSpec& spec, const Quantity& q
     c.reference = [=](const StepRecord& s) {
       return ifLoaded(loads.normal(s), hertz.contactRadius(loads.normal(s)));
     };
-  } else if (q.kind == Kind::PeakPressure || q.kind == Kind::CentrePressure) {
+  } else if (q.kind == Kind::PeakPressure || q.kind == Kind::CentrePressure ||
+             q.kind == Kind::PeakNodalPressure) {
     c.reference = [=](const StepRecord& s) {
       return ifLoaded(loads.normal(s), hertz.peakPressure(loads.normal(s)));
     };
@@ -205,7 +206,7 @@ AnalyticComparison sphereComparison(const ReferenceSpec& spec, const Quantity& q
   } else if (!mindlin) {
     unsupported(p, spec,
                 "contact:PAIR:force:z (at the probes' approach), radius, peak_pressure, "
-                "centre_pressure");
+                "peak_nodal_pressure, centre_pressure");
   }
   if (!mindlin || c.reference) return c;
 
@@ -235,7 +236,7 @@ AnalyticComparison sphereComparison(const ReferenceSpec& spec, const Quantity& q
   } else {
     unsupported(p, spec,
                 "contact:PAIR:force:x|y (at the probes' tangential approach), force:z, radius, "
-                "peak_pressure, centre_pressure, stick_radius");
+                "peak_pressure, peak_nodal_pressure, centre_pressure, stick_radius");
   }
   return c;
 }
@@ -256,7 +257,8 @@ AnalyticComparison cylinderComparison(const ReferenceSpec& spec, const Quantity&
     c.reference = [=](const StepRecord& s) {
       return ifLoaded(loads.normal(s), hertz.halfWidth(loads.normal(s)));
     };
-  } else if (q.kind == Kind::PeakPressure || q.kind == Kind::CentrePressure) {
+  } else if (q.kind == Kind::PeakPressure || q.kind == Kind::CentrePressure ||
+             q.kind == Kind::PeakNodalPressure) {
     c.reference = [=](const StepRecord& s) {
       return ifLoaded(loads.normal(s), hertz.peakPressure(loads.normal(s)));
     };
@@ -275,8 +277,9 @@ AnalyticComparison cylinderComparison(const ReferenceSpec& spec, const Quantity&
     };
   } else {
     unsupported(p, spec,
-                mindlin ? "half_width, peak_pressure, centre_pressure, stick_half_width"
-                        : "half_width, peak_pressure, centre_pressure");
+                mindlin ? "half_width, peak_pressure, peak_nodal_pressure, centre_pressure, "
+                          "stick_half_width"
+                        : "half_width, peak_pressure, peak_nodal_pressure, centre_pressure");
   }
   return c;
 }

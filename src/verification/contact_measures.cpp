@@ -136,4 +136,15 @@ double nodalPressureDeviation(const ContactPairRecord& pair, const std::map<int,
   return area > 0 ? maxRelativeDeviation(pressures, force / area) : 0;
 }
 
+double peakNodalPressure(const ContactPairRecord& pair, const std::map<int, double>& areas) {
+  double peak = 0;
+  for (std::size_t k = 0; k < pair.slaveNodes.size(); ++k) {
+    const auto tributary = areas.find(pair.slaveNodes[k]);
+    if (tributary == areas.end() || tributary->second <= 0) continue;
+    const double nodalForce = pair.slaveNodalForce.col(static_cast<Eigen::Index>(k)).norm();
+    peak = std::max(peak, nodalForce / tributary->second);
+  }
+  return peak;
+}
+
 }  // namespace cc::verification

@@ -50,5 +50,10 @@ std::map<int, double> tributaryAreas(const Mesh& mesh, const FaceSet& faces);
 // The same deviation for the nodal pressures |f_a| / A_a of the slave nodes that carry a contact
 // force: how unevenly the pair loads the slave body, whatever its point tractions do.
 double nodalPressureDeviation(const ContactPairRecord& pair, const std::map<int, double>& areas);
+// The largest |f_a| / A_a over the slave nodes: the pressure field a contour plot of the nodal
+// contact forces shows. Unlike the largest point pressure it does not pick up the single points
+// of an element that is only partly in contact (the Hertz sphere: +20 % at one point, -0.8 %
+// at the nodes).
+double peakNodalPressure(const ContactPairRecord& pair, const std::map<int, double>& areas);
 
 }  // namespace cc::verification

@@ -19,7 +19,8 @@ namespace {
 constexpr const char* kAcceptedForms =
     "expected reaction:SET:x|y|z, displacement:SET:x|y|z, contact:PAIR:force:x|y|z or "
     "contact:PAIR:area|radius|half_width|stick_radius|stick_half_width|peak_pressure|"
-    "centre_pressure|penetration|pressure_deviation|nodal_pressure_deviation";
+    "centre_pressure|penetration|pressure_deviation|nodal_pressure_deviation|"
+    "peak_nodal_pressure";
 
 const std::map<std::string, Quantity::Kind>& contactScalars() {
   static const std::map<std::string, Quantity::Kind> scalars = {
@@ -32,7 +33,8 @@ const std::map<std::string, Quantity::Kind>& contactScalars() {
       {"centre_pressure", Quantity::Kind::CentrePressure},
       {"penetration", Quantity::Kind::Penetration},
       {"pressure_deviation", Quantity::Kind::PressureDeviation},
-      {"nodal_pressure_deviation", Quantity::Kind::NodalPressureDeviation}};
+      {"nodal_pressure_deviation", Quantity::Kind::NodalPressureDeviation},
+      {"peak_nodal_pressure", Quantity::Kind::PeakNodalPressure}};
   return scalars;
 }
 
@@ -108,12 +110,13 @@ Quantity parseQuantity(const std::string& text, const Model& model, const Source
   if (isContact && !hasPair(model, q.name)) {
     throw InputError(where, fmt::format("no contact pair named '{}' in this deck", q.name));
   }
-  if (q.kind == Quantity::Kind::NodalPressureDeviation) {
+  if (q.kind == Quantity::Kind::NodalPressureDeviation ||
+      q.kind == Quantity::Kind::PeakNodalPressure) {
     const FaceSet* faces = slaveFaces(model, q.name);
     if (!faces) {
-      throw InputError(where, fmt::format("nodal_pressure_deviation needs a slave face set; pair "
-                                          "'{}' has none (stas, or nts on a node set)",
-                                          q.name));
+      throw InputError(where, fmt::format("{} needs a slave face set; pair '{}' has none (stas, "
+                                          "or nts on a node set)",
+                                          splitFields(text).back(), q.name));
     }
     q.slaveAreas =
         std::make_shared<const std::map<int, double>>(tributaryAreas(model.mesh(), *faces));
@@ -178,6 +181,8 @@ double measure(const Quantity& quantity, const StepRecord& step, const Mesh& mes
       return pressureDeviation(pair);
     case Kind::NodalPressureDeviation:
       return nodalPressureDeviation(pair, *quantity.slaveAreas);
+    case Kind::PeakNodalPressure:
+      return peakNodalPressure(pair, *quantity.slaveAreas);
     default:
       break;
   }

@@ -28,12 +28,13 @@ struct Quantity {
     Penetration,             // contact:PAIR:penetration       max -g
     PressureDeviation,       // contact:PAIR:pressure_deviation  max |p - mean| / mean
     NodalPressureDeviation,  // contact:PAIR:nodal_pressure_deviation  the same for |f_a| / A_a
+    PeakNodalPressure,       // contact:PAIR:peak_nodal_pressure  max |f_a| / A_a over slave nodes
   };
   Kind kind = Kind::Reaction;
   std::string name;    // node set or contact pair
   int component = -1;  // 0, 1, 2 for x, y, z; -1 for scalars
   std::string text;    // as written in the deck
-  // NodalPressureDeviation: tributary areas of the pair's slave face set.
+  // NodalPressureDeviation, PeakNodalPressure: tributary areas of the pair's slave face set.
   std::shared_ptr<const std::map<int, double>> slaveAreas;
 };
 

@@ -66,6 +66,10 @@ TEST(VerificationHertz, ElasticSphereStsRadiusAndCentrePressure) {
   expectCompleted(r);
   EXPECT_LT(std::abs(r["contact:hertz:radius"].error), elementSize(6));
   EXPECT_LT(std::abs(r["contact:hertz:centre_pressure"].relativeError), 0.03);
+  // The peak of the nodal pressure (force per tributary area of a slave node), the field a
+  // contour plot shows: within 3 % of p0 (measured -0.8 % at m = 8), while the largest point
+  // pressure is +20 % at one point of an element at the contact edge that is only partly closed.
+  EXPECT_LT(std::abs(r["contact:hertz:peak_nodal_pressure"].relativeError), 0.03);
   RecordProperty("force_relative_error", std::to_string(r["contact:hertz:force:z"].relativeError));
   RecordProperty("peak_pressure_relative_error",
                  std::to_string(r["contact:hertz:peak_pressure"].relativeError));
