@@ -72,10 +72,13 @@ ContactPair::Augmentation ContactPair::augment() {
   const Eigen::VectorXd next = accelerator_.next(current, image, weights);
   for (std::size_t k = 0; k < count; ++k) {
     PairPoint& point = points_[k];
+    // A point without a projection has weight 0 in the combination: it takes its plain image
+    // (no multiplier), as in plain Uzawa, not whatever the combination leaves there.
+    const Eigen::VectorXd& source = point.trial.valid ? next : image;
     // A compressive multiplier only (N = min(0, lambda_N + eps_N g)): a combination may
     // overshoot to tension where the plain image would be 0.
-    point.multiplierNormal = std::min(0.0, next[4 * k]);
-    point.tractionAugmentation = next.segment<3>(4 * k + 1);
+    point.multiplierNormal = std::min(0.0, source[4 * k]);
+    point.tractionAugmentation = source.segment<3>(4 * k + 1);
   }
   ++augmentations_;
   return Augmentation::Updated;
