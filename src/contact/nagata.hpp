@@ -98,7 +98,9 @@ inline Eigen::Vector3d nagataFixedTangentialTerm(const Eigen::Vector3d& n0,
 // Nodal normals of a Quad4 master segment, in its node order (unit vectors, outward on the
 // master, i.e. pointing to the slave side), and the tangential scale of each edge.
 struct NodalNormals {
-  std::array<Eigen::Vector3d, 4> normal;
+  // Zero until set (a faceted master never sets them; copying points copies them).
+  std::array<Eigen::Vector3d, 4> normal{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(),
+                                        Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
   std::array<double, 4> tangentialScale{1, 1, 1, 1};
   // Per edge, a correction added to C_e d (nagataFixedTangentialTerm; zero: c = C_e d).
   std::array<Eigen::Vector3d, 4> fixedCorrection{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(),
