@@ -7,18 +7,14 @@ over 10% of a segment) and `tangent=exact` the first 4 press steps converge with
 each in at most 12 iterations (measured 6, 4, 7, 8), and the active-set cycles that remain are
 caught early: at most 6 iterations per step are discarded before the line-search retry (measured
 11 in all; see docs/verification/sliding.md)."""
-import argparse
 import os
 import re
 import subprocess
 import sys
 
-parser = argparse.ArgumentParser()
-parser.add_argument("--covcontact", required=True)
-parser.add_argument("--decks", required=True)
-parser.add_argument("--scratch", required=True)
-args = parser.parse_args()
-os.makedirs(args.scratch, exist_ok=True)
+import stress_script
+
+args = stress_script.parse_args()
 here = os.path.abspath(os.path.join(args.decks, "ironing"))
 source = open(os.path.join(here, "ironing_nts_mu03_equal.deck")).read()
 source = source.replace('"ironing_model.inc"', '"' + os.path.join(here, "ironing_model.inc") + '"')

@@ -5,24 +5,15 @@ the step's count, the tangent check prints 3 directions x 3 step sizes, and with
 the random-direction check agrees with the central differences of the residual to 1e-6 at
 h = 1e-6 |u| (an independent reference: the residual itself); a malformed STEP:ITERATION is
 rejected with a usage error."""
-import argparse
 import os
 import re
 import subprocess
 import sys
 
-parser = argparse.ArgumentParser()
-parser.add_argument("--covcontact", required=True)
-parser.add_argument("--decks", required=True)
-parser.add_argument("--scratch", required=True)
-args = parser.parse_args()
-os.makedirs(args.scratch, exist_ok=True)
+import stress_script
 
-source = open(os.path.join(args.decks, "large_slip_step.deck")).read()
-deck = os.path.join(args.scratch, "large_slip_step_exact.deck")
-mesh = os.path.abspath(os.path.join(args.decks, "../../meshes/block_on_base.geo"))
-open(deck, "w").write(source.replace("../../meshes/block_on_base.geo", mesh)
-                      .replace("name=interface", "name=interface tangent=exact"))
+args = stress_script.parse_args()
+deck = stress_script.exact_large_slip_deck(args)
 run = subprocess.run([args.covcontact, "run", "--threads", "1", "--newton-log", "--check-tangent",
                       "2:3", deck, "-o", os.path.join(args.scratch, "r.h5")],
                      capture_output=True, text=True, timeout=240)

@@ -10,7 +10,6 @@ the start of an iteration) the order estimate p = log(r_{k+1}/r_k) / log(r_k/r_{
 least 1.8 (2 in theory; linear convergence, as with an inconsistent tangent, gives p near 1).
 The residuals used must lie above round-off (1e-13 relative); the constant r_{k+1} / r_k^2 is
 printed, not asserted."""
-import argparse
 import math
 import os
 import subprocess
@@ -18,18 +17,10 @@ import sys
 
 import h5py
 
-parser = argparse.ArgumentParser()
-parser.add_argument("--covcontact", required=True)
-parser.add_argument("--decks", required=True)
-parser.add_argument("--scratch", required=True)
-args = parser.parse_args()
-os.makedirs(args.scratch, exist_ok=True)
+import stress_script
 
-source = open(os.path.join(args.decks, "large_slip_step.deck")).read()
-deck = os.path.join(args.scratch, "large_slip_step_exact.deck")
-mesh = os.path.abspath(os.path.join(args.decks, "../../meshes/block_on_base.geo"))
-open(deck, "w").write(source.replace("../../meshes/block_on_base.geo", mesh)
-                      .replace("name=interface", "name=interface tangent=exact"))
+args = stress_script.parse_args()
+deck = stress_script.exact_large_slip_deck(args)
 results = os.path.join(args.scratch, "r.h5")
 run = subprocess.run([args.covcontact, "run", "--threads", "1", "-q", deck, "-o", results],
                      capture_output=True, text=True, timeout=240)

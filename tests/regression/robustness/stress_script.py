@@ -1,0 +1,26 @@
+"""Shared by the issue-14 scripts of this folder (check_newton_diagnostics.py,
+check_quadratic_tail.py, check_ironing_edge.py): their command line (--covcontact, --decks
+input/stress, --scratch) and the exact-tangent copy of the large-slip deck they run."""
+import argparse
+import os
+
+
+def parse_args():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--covcontact", required=True)
+    parser.add_argument("--decks", required=True)
+    parser.add_argument("--scratch", required=True)
+    args = parser.parse_args()
+    os.makedirs(args.scratch, exist_ok=True)
+    return args
+
+
+def exact_large_slip_deck(args):
+    """input/stress/large_slip_step.deck with tangent=exact, written to the scratch folder with
+    its mesh path made absolute; returns the copy's path."""
+    source = open(os.path.join(args.decks, "large_slip_step.deck")).read()
+    deck = os.path.join(args.scratch, "large_slip_step_exact.deck")
+    mesh = os.path.abspath(os.path.join(args.decks, "../../meshes/block_on_base.geo"))
+    open(deck, "w").write(source.replace("../../meshes/block_on_base.geo", mesh)
+                          .replace("name=interface", "name=interface tangent=exact"))
+    return deck
