@@ -23,8 +23,10 @@ int compareCommand(const CompareOptionsCli& cli) {
   options.rtol = cli.rtol;
   options.atol = cli.atol;
   if (!cli.fields.empty()) options.fields = cli.fields;
-  // A file a run is still writing is read between two of its flushes: a read that overlaps a
-  // flush can fail, so it is retried a few times before giving up with a message that says so.
+  // A file a run is still writing is read between two of its flushes: the reader holds the
+  // writer off (ConsistencyLock). A read can still fail if the writer stopped waiting (after a
+  // minute of readers) or a writer without that lock (an older version) is at work: it is then
+  // retried a few times before giving up with a message that says so.
   const auto inProgress = [&] {
     for (const std::string& path : {cli.run, cli.reference})
       if (beingWritten(path)) return path;

@@ -1,5 +1,5 @@
-// Results-file guards: replaceability rules, the writer's flock, and descriptions of unreadable
-// paths (see results_file_guard.hpp).
+// Results-file guards: replaceability rules, the writer's flock, the readers' and writer's
+// consistency lock, and descriptions of unreadable paths (see results_file_guard.hpp).
 #include "output/results_file_guard.hpp"
 
 #include <fcntl.h>
@@ -7,11 +7,15 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <cerrno>
+#include <chrono>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
+#include <thread>
 #include <utility>
 
 #include "output/hdf5_io.hpp"
@@ -155,6 +159,92 @@ ResultsFileLock& ResultsFileLock::operator=(ResultsFileLock&& other) noexcept {
   if (this != &other) {
     if (fd_ >= 0) ::close(fd_);
     fd_ = std::exchange(other.fd_, -1);
+  }
+  return *this;
+}
+
+namespace {
+
+// The locked byte: far beyond the end of any results file, so no reader or writer of the data
+// ever touches it (lock ranges may lie beyond the end of a file).
+constexpr off_t kConsistencyByte = off_t{1} << 62;
+
+enum class LockOutcome { Granted, Busy, Unsupported };
+
+// Takes the open-file-description lock of `type` on the consistency byte, polling until it is
+// granted or `patience` has passed (Busy). Unsupported: the file system refuses such locks.
+LockOutcome takeConsistencyLock(int fd, short type, double patience) {
+  struct flock range {};
+  range.l_type = type;
+  range.l_whence = SEEK_SET;
+  range.l_start = kConsistencyByte;
+  range.l_len = 1;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(patience);
+  auto pause = std::chrono::microseconds(100);
+  for (;;) {
+    if (::fcntl(fd, F_OFD_SETLK, &range) == 0) return LockOutcome::Granted;
+    if (errno != EAGAIN && errno != EACCES && errno != EINTR) return LockOutcome::Unsupported;
+    if (std::chrono::steady_clock::now() >= deadline) return LockOutcome::Busy;
+    std::this_thread::sleep_for(pause);
+    pause = std::min(2 * pause, std::chrono::microseconds(20000));
+  }
+}
+
+}  // namespace
+
+ConsistencyLock ConsistencyLock::forWriting(int fd, double patience) {
+  ConsistencyLock lock;
+  if (fd >= 0 && takeConsistencyLock(fd, F_WRLCK, patience) == LockOutcome::Granted) lock.fd_ = fd;
+  return lock;
+}
+
+ConsistencyLock ConsistencyLock::forReading(const std::string& path, double patience) {
+  ConsistencyLock lock;
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
+  if (fd < 0) return lock;  // opening the file will fail and say why
+  const LockOutcome outcome = takeConsistencyLock(fd, F_RDLCK, patience);
+  if (outcome != LockOutcome::Granted) {
+    ::close(fd);
+    if (outcome == LockOutcome::Unsupported) return lock;  // read as before, without the lock
+    std::ostringstream message;
+    message << "cannot read '" << path << "': the run writing it did not finish a flush in "
+            << patience << " s";
+    throw OutputError(message.str());
+  }
+  lock.fd_ = fd;
+  lock.ownsDescriptor_ = true;
+  return lock;
+}
+
+void ConsistencyLock::release() noexcept {
+  if (fd_ < 0) return;
+  if (ownsDescriptor_) {
+    ::close(fd_);  // closing our own description releases its lock
+  } else {
+    struct flock range {};
+    range.l_type = F_UNLCK;
+    range.l_whence = SEEK_SET;
+    range.l_start = kConsistencyByte;
+    range.l_len = 1;
+    ::fcntl(fd_, F_OFD_SETLK, &range);
+  }
+  fd_ = -1;
+  ownsDescriptor_ = false;
+}
+
+ConsistencyLock::~ConsistencyLock() {
+  release();
+}
+
+ConsistencyLock::ConsistencyLock(ConsistencyLock&& other) noexcept
+    : fd_(std::exchange(other.fd_, -1)),
+      ownsDescriptor_(std::exchange(other.ownsDescriptor_, false)) {}
+
+ConsistencyLock& ConsistencyLock::operator=(ConsistencyLock&& other) noexcept {
+  if (this != &other) {
+    release();
+    fd_ = std::exchange(other.fd_, -1);
+    ownsDescriptor_ = std::exchange(other.ownsDescriptor_, false);
   }
   return *this;
 }

@@ -1,6 +1,7 @@
 // Guarding results files (issue 15): which existing file a run may replace (only a file that
 // CovContact wrote, and never one of the run's inputs), the lock that keeps a second writer of
-// the same file out before anything is truncated, and saying what a path that cannot be read as
+// the same file out before anything is truncated, the lock that keeps readers of a file in
+// progress out of its flushes, and saying what a path that cannot be read as
 // a results file is instead of HDF5's "unable to open file".
 #pragma once
 
@@ -22,6 +23,39 @@ enum class OutputKind { Results, Xdmf, Csv };
 void checkReplaceable(const std::string& path, OutputKind kind,
                       const std::vector<std::string>& inputs);
 
+// The lock that keeps a reader of a file in progress from meeting half-written HDF5 metadata
+// (issue 15: such a read could leave HDF5 objects open that the library cannot close). The writer
+// holds it exclusively from its first change to the file until the flush that makes the file
+// consistent again; a reader holds it shared from before it opens the file until after it closes
+// it. It is an open-file-description lock (Linux) on one byte far beyond the end of the file:
+// independent of the writer's flock, and not dropped when HDF5 closes its own descriptor of the
+// same file (classic POSIX record locks would be). A writer waits at most kWriterPatienceSeconds
+// for readers and then writes anyway (a stopped reader must not stop a run); a reader waits at most
+// kReaderPatienceSeconds for the writer's flush and then throws OutputError.
+class ConsistencyLock {
+ public:
+  static constexpr double kWriterPatienceSeconds = 60;
+  static constexpr double kReaderPatienceSeconds = 30;
+  ConsistencyLock() = default;
+  // Writer: exclusive, on the descriptor `fd` of its ResultsFileLock (-1: a rank without it);
+  // not held() if readers kept it for `patience` seconds.
+  static ConsistencyLock forWriting(int fd, double patience = kWriterPatienceSeconds);
+  // Reader: shared, on a descriptor of its own.
+  static ConsistencyLock forReading(const std::string& path,
+                                    double patience = kReaderPatienceSeconds);
+  ~ConsistencyLock();
+  ConsistencyLock(ConsistencyLock&& other) noexcept;
+  ConsistencyLock& operator=(ConsistencyLock&& other) noexcept;
+  ConsistencyLock(const ConsistencyLock&) = delete;
+  ConsistencyLock& operator=(const ConsistencyLock&) = delete;
+  bool held() const { return fd_ >= 0; }
+
+ private:
+  void release() noexcept;
+  int fd_ = -1;
+  bool ownsDescriptor_ = false;
+};
+
 // An exclusive advisory lock (flock) on a results file, taken on a descriptor opened without
 // truncation, so that a second run writing the same file is refused before it can truncate the
 // first one's file. HDF5's own locking is switched off in the writer (it would conflict with this
@@ -37,6 +71,10 @@ class ResultsFileLock {
   ResultsFileLock(const ResultsFileLock&) = delete;
   ResultsFileLock& operator=(const ResultsFileLock&) = delete;
   bool held() const { return fd_ >= 0; }
+  // Exclusive ConsistencyLock on this descriptor, for one change of the file up to its flush.
+  ConsistencyLock beginChange(double patience = ConsistencyLock::kWriterPatienceSeconds) const {
+    return ConsistencyLock::forWriting(fd_, patience);
+  }
 
  private:
   int fd_ = -1;

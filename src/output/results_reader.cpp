@@ -31,6 +31,7 @@ ResultsReader::ResultsReader(const std::string& path) : path_(path) {
   std::error_code error;
   if (!std::filesystem::is_regular_file(path_, error))
     throw OutputError("cannot read '" + path_ + "' as a results file: " + unreadableReason(path_));
+  consistency_ = ConsistencyLock::forReading(path_);
   h5::QuietErrors quiet;
   h5::PropertyList access(h5::check(H5Pcreate(H5P_FILE_ACCESS), path_, "opening the file"));
   // Readers never modify the file, so they need no lock; this lets us read a run in progress.

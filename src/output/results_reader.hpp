@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "output/hdf5_io.hpp"
+#include "output/results_file_guard.hpp"
 #include "records/result_records.hpp"
 
 namespace cc {
@@ -22,7 +23,9 @@ struct StepHeader {
 class ResultsReader {
  public:
   // Opens read-only without taking HDF5's file lock, so a file still being written can be read
-  // (up to its last flushed step). Throws OutputError naming the file if it is not our format.
+  // (up to its last flushed step): the reader holds a shared ConsistencyLock from before it opens
+  // the file until it is destroyed, so the writer cannot change the file under it. Throws
+  // OutputError naming the file if it is not our format.
   explicit ResultsReader(const std::string& path);
 
   const std::string& path() const { return path_; }
@@ -50,6 +53,7 @@ class ResultsReader {
   H5I_type_t objectType(const std::string& path) const;
 
   std::string path_;
+  ConsistencyLock consistency_;  // declared before file_: released after the file is closed
   h5::File file_;
 };
 

@@ -171,12 +171,27 @@ struct ResultsWriter::State {
 
   h5::FileRef ref() const { return {file.get(), path, &share}; }
   void flush() const { h5::checkStatus(H5Fflush(file.get(), H5F_SCOPE_GLOBAL), path, "flushing"); }
+  // Closes every HDF5 object and the file (its last metadata is written here).
+  void closeFile() {
+    convergence.reset();
+    cutbacks.reset();
+    steps.reset();
+    h5::checkStatus(file.close(), path, "closing the file");
+  }
 };
 
 ResultsWriter::ResultsWriter() = default;
 
 ResultsWriter::~ResultsWriter() {
   h5::QuietErrors quiet;
+  if (!state_) return;
+  try {
+    // An interrupted run closes its file here; closing writes metadata, so readers wait for it.
+    const ConsistencyLock change = state_->lock.beginChange();
+    state_->closeFile();
+  } catch (const OutputError&) {
+    // Already reported by whoever interrupted the run; the steps flushed before stay readable.
+  }
   state_.reset();
 }
 
@@ -212,6 +227,8 @@ void ResultsWriter::open(const std::string& path, const RunInfo& info, const Mes
     if (code != 0) throw OutputError(message);
   }
   h5::QuietErrors quiet;
+  // Readers of the old file wait until the new one has its first flush (ConsistencyLock).
+  const ConsistencyLock change = lock.beginChange();
   auto state = std::make_unique<State>();
   state->lock = std::move(lock);
   state->path = path;
@@ -275,12 +292,15 @@ void ResultsWriter::writeStep(const StepRecord& step) {
 
   h5::QuietErrors quiet;
   {
+    // A reader of the file in progress sees the file before this step or after its flush.
+    const ConsistencyLock change = state_->lock.beginChange();
     h5::Group group =
         h5::createGroup(state_->ref(), state_->steps.get(), layout::stepGroupName(step.step));
     writeStepGroup(step, group.get());
+    group.reset();
+    // Flush before the sidecars mention the step, so they never point at unwritten data.
+    state_->flush();
   }
-  // Flush before the sidecars mention the step, so they never point at unwritten data.
-  state_->flush();
 
   if (state_->xdmf) {
     XdmfStep shown{step.step,
@@ -384,8 +404,11 @@ void ResultsWriter::appendIteration(const IterationRecord& iteration) {
       iteration.step,   iteration.attempt,        iteration.iteration,
       iteration.time,   iteration.residualNorm,   iteration.relativeResidual,
       iteration.energy, iteration.relativeEnergy, iteration.wallSeconds};
+  // Flushed at once, like a step: the history of a step that fails is what a user looks at.
+  const ConsistencyLock change = state_->lock.beginChange();
   appendRow(state_->ref(), state_->convergence.get(), layout::kConvergence,
             state_->convergenceType.get(), &row);
+  state_->flush();
 }
 
 void ResultsWriter::appendCutback(const CutbackRecord& cutback) {
@@ -393,14 +416,17 @@ void ResultsWriter::appendCutback(const CutbackRecord& cutback) {
   h5::QuietErrors quiet;
   const layout::CutbackRow row =
       layout::cutbackRow(cutback.step, cutback.time, cutback.newDt, cutback.reason);
+  const ConsistencyLock change = state_->lock.beginChange();
   appendRow(state_->ref(), state_->cutbacks.get(), layout::kCutbacks, state_->cutbackType.get(),
             &row);
+  state_->flush();
 }
 
 void ResultsWriter::close(const RunTotals& totals) {
   if (!state_) throw std::logic_error("ResultsWriter::close: no file is open");
   h5::QuietErrors quiet;
   std::unique_ptr<State> state = std::move(state_);
+  const ConsistencyLock change = state->lock.beginChange();
   const h5::FileRef file = state->ref();
   {
     h5::Group summary = h5::createGroup(file, file.id, "summary");
@@ -417,10 +443,7 @@ void ResultsWriter::close(const RunTotals& totals) {
                        static_cast<int>(totals.krylovIterations));
     h5::writeAttribute(file, summary.get(), "krylov_fallbacks", totals.krylovFallbacks);
   }
-  state->convergence.reset();
-  state->cutbacks.reset();
-  state->steps.reset();
-  h5::checkStatus(state->file.close(), state->path, "closing the file");
+  state->closeFile();
 }
 
 }  // namespace cc
