@@ -172,6 +172,7 @@ PointSetup ContactPair::setupFor(const PairPoint& point) const {
   setup.layout = point.layout;
   setup.slave = point.slave;
   setup.history = point.committed;
+  setup.history.stepStart = evaluationPass_ == passAtStepStart_ + 1;
   setup.law = config_.law;
   if (config_.augmented) {
     setup.history.multiplierNormal = point.multiplierNormal;
@@ -254,12 +255,14 @@ void ContactPair::commitStep() {
     point.committedSearchSegment = point.segment;
     point.committedSearchXi = point.xi;
   }
+  passAtStepStart_ = evaluationPass_;
   // The previous-segment nodes of the items follow the new history.
   for (PairPoint& point : points_) buildItem(point);
   ++topologyVersion_;
 }
 
 void ContactPair::restoreStep() {
+  passAtStepStart_ = evaluationPass_;
   restoreAugmentation();
   for (PairPoint& point : points_) {
     if (searchesMasterSegments(config_.kind)) {

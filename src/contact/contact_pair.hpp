@@ -147,6 +147,8 @@ class ContactPair : public Contribution {
   std::uint64_t topologyVersion_ = 1;
   // Counts prepare() calls: points evaluated since the last one carry this number.
   std::uint64_t evaluationPass_ = 0;
+  // The pass at the last commit or restore: the next one evaluates the step's first iterate.
+  std::uint64_t passAtStepStart_ = 0;
   bool evaluatedThisPass(const PairPoint& point) const {
     return point.evaluatedInPass == evaluationPass_;
   }

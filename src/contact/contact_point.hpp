@@ -78,6 +78,9 @@ struct PointHistory {
   // vector added to the trial traction by eq. (51) (zero for the paper's penalty).
   double multiplierNormal = 0;
   Eigen::Vector3d tractionAugmentation = Eigen::Vector3d::Zero();
+  // Set per evaluation, not committed: this is the step's first iterate (the first evaluation
+  // after a commit or a restore), where returnMapping keeps sliding points sliding in a band.
+  bool stepStart = false;
 };
 
 template <class Scalar>
@@ -162,8 +165,9 @@ PointResponse<Scalar> pointResponse(const PointKinematics<Scalar>& kin, const Po
       trial += translateTractionInParallel(
           kin.frame, Vec3<Scalar>(history.tractionAugmentation.cast<Scalar>()));
     }
-    response.tangential = returnMapping(kin.frame, trial, response.normal, law.friction,
-                                        law.penaltyTangential, history.state == ContactState::Slip);
+    response.tangential =
+        returnMapping(kin.frame, trial, response.normal, law.friction, law.penaltyTangential,
+                      history.state == ContactState::Slip, history.stepStart);
     response.state = response.tangential.state;
   }
   return response;

@@ -1,5 +1,6 @@
 """Shared by the issue-14 scripts of this folder (check_newton_diagnostics.py,
-check_quadratic_tail.py, check_ironing_edge.py): their command line (--covcontact, --decks
+check_quadratic_tail.py, check_ironing_edge.py,
+check_step_start_sliding.py): their command line (--covcontact, --decks
 input/stress, --scratch) and the exact-tangent copy of the large-slip deck they run."""
 import argparse
 import os

@@ -209,5 +209,50 @@ TEST(ContactPair, ParallelTranslationKeepsTractionContinuousAcrossSegments) {
   EXPECT_GT(largestJump, 0.5);
 }
 
+// The first iterate of a step after a sliding step (issue 14): a point that was sliding and
+// whose trial traction lies just inside the Coulomb cone (here N grew by `growth` since the
+// converged state while T^(n) was carried unchanged) keeps sliding if the gap to the cone is
+// within kStepStartSlideBand of mu |N|; from the second iterate on, and beyond the band, it
+// sticks, as the return mapping (79) says.
+std::vector<ContactState> statesAtStepStart(double growth, int evaluations, bool restore) {
+  const double g = 2e-3;
+  Grid master = makeGrid(6, 1, 0, 0, 6, 1, 0, true, 0);
+  Grid slave = makeGrid(1, 1, 0.2, 0.3, 0.2, 0.2, -g, false, 14);
+  Mesh mesh;
+  mesh.coordinates.resize(3, 14 + 4);
+  mesh.coordinates << master.coordinates, slave.coordinates;
+  auto pair = ContactPair::nodeToSegment(config(PointKind::NodeToSegment, 0.3), mesh, master.faces,
+                                         slave.faces);
+  Matrix3Xd slid = mesh.coordinates;
+  for (int node = 14; node < 18; ++node) slid(0, node) += 0.18;
+  assembleForce(*pair, slid, mesh.coordinates, 1);
+  pair->commitStep();
+  for (int i = 0; i < pair->record().state.size(); ++i)
+    EXPECT_EQ(pair->record().state[i], static_cast<int>(ContactState::Slip));
+  Matrix3Xd pressed = slid;
+  for (int node = 14; node < 18; ++node) pressed(2, node) -= growth * g;
+  for (int k = 0; k < evaluations; ++k) assembleForce(*pair, pressed, slid, 2);
+  if (restore) {
+    pair->restoreStep();
+    assembleForce(*pair, pressed, slid, 2);
+  }
+  std::vector<ContactState> states;
+  const ContactPairRecord r = pair->record();
+  for (int i = 0; i < r.state.size(); ++i) states.push_back(static_cast<ContactState>(r.state[i]));
+  return states;
+}
+
+TEST(ContactPair, ASlidingPointKeepsSlidingAtTheStepStartOnlyWithinTheBand) {
+  const double inside = 0.1 * kStepStartSlideBand;  // trial inside the cone by a tenth of it
+  for (const ContactState state : statesAtStepStart(inside, 1, false))
+    EXPECT_EQ(state, ContactState::Slip) << "first iterate, within the band";
+  for (const ContactState state : statesAtStepStart(inside, 2, false))
+    EXPECT_EQ(state, ContactState::Stick) << "second iterate: the exact decision";
+  for (const ContactState state : statesAtStepStart(inside, 2, true))
+    EXPECT_EQ(state, ContactState::Slip) << "first iterate of the step retried after a restore";
+  for (const ContactState state : statesAtStepStart(5 * kStepStartSlideBand, 1, false))
+    EXPECT_EQ(state, ContactState::Stick) << "first iterate, beyond the band";
+}
+
 }  // namespace
 }  // namespace cc::contact

@@ -1,0 +1,51 @@
+#!/usr/bin/python3
+"""Sliding points stay sliding at the first iterate of a step (issue 14): the smoothed ironing die
+(input/stress/ironing/ironing_sts_mu03_wide_smooth.deck) run to t = 0.45, steps 41-45 in
+developed sliding, with --newton-log. At a step's first iterate the trial traction of a sliding
+point is T^(n) carried to a master that has barely moved, so it lies on the Coulomb cone up to
+the change of N since the converged state; deciding "stick" there (the code before
+kStepStartSlideBand) gave the first Newton update the stick tangent for half of the sliding
+points: 100-134 points then switched stick -> slip at iteration 2 of each of these steps, which
+took 6, 7, 5, 6, 6 iterations (30). Asserted: at most 30 points change state at iteration 2
+(measured 2-10) and at most 27 iterations in the five steps (measured 25)."""
+import os
+import re
+import subprocess
+import sys
+
+import stress_script
+
+args = stress_script.parse_args()
+here = os.path.abspath(os.path.join(args.decks, "ironing"))
+source = open(os.path.join(here, "ironing_sts_mu03_wide_smooth.deck")).read()
+source = source.replace('"ironing_model.inc"', '"' + os.path.join(here, "ironing_model.inc") + '"')
+source = source.replace('"../../../meshes/ironing.geo"',
+                        '"' + os.path.abspath(os.path.join(args.decks, "../../meshes/ironing.geo")) + '"')
+assert "steps 100 dt=0.01" in source and "surface=smooth" in source
+deck = os.path.join(args.scratch, "ironing_smooth_45.deck")
+open(deck, "w").write(source.replace("steps 100 dt=0.01", "steps 45 dt=0.01"))
+r = subprocess.run([args.covcontact, "run", "--threads", "1", "--newton-log", deck, "-o",
+                    os.path.join(args.scratch, "ironing_smooth_45.h5")],
+                   capture_output=True, text=True, timeout=280)
+if r.returncode != 0:
+    sys.exit(f"the run failed: exit {r.returncode}\n{r.stdout[-2000:]}{r.stderr[-2000:]}")
+failures = []
+total = 0
+for step in range(41, 46):
+    changed = re.search(rf"step {step} attempt 0 iteration 2 .* (\d+) changed state", r.stdout)
+    iterations = re.search(rf"^step {step}/45 .* (\d+) iterations", r.stdout, re.M)
+    if not changed or not iterations:
+        failures.append(f"step {step}: no iteration-2 log line or no step line")
+        continue
+    total += int(iterations.group(1))
+    print(f"step {step}: {iterations.group(1)} iterations, {changed.group(1)} points changed "
+          f"state at iteration 2")
+    if int(changed.group(1)) > 30:
+        failures.append(f"step {step}: {changed.group(1)} points changed state at iteration 2 "
+                        "(at most 30; 100-134 when sliding points were decided stick at the "
+                        "step's first iterate)")
+print(f"steps 41-45: {total} Newton iterations")
+if total > 27:
+    failures.append(f"steps 41-45 took {total} Newton iterations (at most 27; 30 before)")
+if failures:
+    sys.exit("\n".join(failures))
