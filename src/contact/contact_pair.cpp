@@ -204,6 +204,15 @@ LocalStatus ContactPair::evaluate(std::size_t item, const AssemblyState& state,
   for (int k = 0; k < point.layout.nodeCount; ++k)
     nodes.col(k) = state.current->col(point.nodes[k]);
   const PointSetup setup = setupFor(point);
+  if (predictsSurfaceMotion(setup))
+    return evaluateSurfaceMotionPredictor(point, setup, state, nodes, force, tangent);
+  return evaluateExactly(point, setup, nodes, force, tangent);
+}
+
+LocalStatus ContactPair::evaluateExactly(PairPoint& point, const PointSetup& setup,
+                                         const NodeMatrix<double>& nodes, Eigen::VectorXd& force,
+                                         Eigen::MatrixXd* tangent) {
+  const std::size_t item = static_cast<std::size_t>(&point - points_.data());
   const PointEvaluation e = evaluatePoint(setup, nodes);
   point.trial = trialOf(e, config_.law);
   if (!e.valid) return LocalStatus::success();
@@ -226,6 +235,50 @@ LocalStatus ContactPair::evaluate(std::size_t item, const AssemblyState& state,
                 setup.kind != PointKind::SegmentToAnalytical  // STAS: n x m is unsymmetric
             ? contact::tangentSymmetric(e.response.state, config_.parts)
             : (*tangent - tangent->transpose()).norm() <= kSymmetryTolerance * tangent->norm();
+  }
+  return LocalStatus::success();
+}
+
+bool ContactPair::predictsSurfaceMotion(const PointSetup& setup) const {
+  return setup.kind == PointKind::SegmentToAnalytical && setup.history.stepStart && motion_;
+}
+
+// STAS, the step's first iterate: the rigid surface's motion over the step enters linearly, as a
+// meshed die's prescribed motion enters the first Newton iteration through its stiffness. The
+// point is evaluated with the surface where it was at the last converged step (offset s_n); the
+// force depends on the item's nodes only relative to the surface, so
+// f(x, s_n+1) = f(x - ds, s_n) ~ f(x, s_n) - K(x, s_n) ds, ds on every node of the item.
+// Moving the surface by the whole increment at once pushed it into the slab ahead of it: on the
+// ironing deck 42-48 points switched open/closed in the next iterations and plain Newton
+// diverged (docs/verification/sliding.md). From the second iterate on the force is the exact
+// one, so converged steps are unchanged.
+LocalStatus ContactPair::evaluateSurfaceMotionPredictor(PairPoint& point, const PointSetup& setup,
+                                                        const AssemblyState& state,
+                                                        const NodeMatrix<double>& nodes,
+                                                        Eigen::VectorXd& force,
+                                                        Eigen::MatrixXd* tangent) {
+  PointSetup previous = setup;
+  previous.surfaceOffset = motion_(state.previousTime);
+  const Eigen::Vector3d increment = surfaceOffset_ - previous.surfaceOffset;
+  const PointEvaluation e = evaluatePoint(previous, nodes);
+  // Only a point in contact before the motion is predicted: one that the surface reaches during
+  // the step has no force to extrapolate, and predicting none would let a step whose only load
+  // is the surface's motion (a punch, a sphere pressed in) look converged at its first iterate.
+  if (!e.valid || e.response.state == ContactState::Open)
+    return evaluateExactly(point, setup, nodes, force, tangent);
+  point.trial = trialOf(e, config_.law);
+  Eigen::MatrixXd local;
+  Eigen::MatrixXd& K = tangent ? *tangent : local;
+  pointTangent(previous, nodes, e, config_.tangentMode, config_.parts, K);
+  Eigen::VectorXd shift(3 * point.layout.nodeCount);
+  for (int k = 0; k < point.layout.nodeCount; ++k) shift.segment<3>(3 * k) = increment;
+  force = e.force - K * shift;
+  point.trial.symmetric = (K - K.transpose()).norm() <= kSymmetryTolerance * K.norm();
+  if (!force.allFinite() || !K.allFinite()) {
+    return LocalStatus::failure(
+        FailureKind::NotFinite,
+        fmt::format("contact pair '{}', point {}: predicted force or tangent is not finite",
+                    config_.name, &point - points_.data()));
   }
   return LocalStatus::success();
 }

@@ -125,6 +125,16 @@ class ContactPair : public Contribution {
   // Table 1, step 1: the projections in the initial configuration start the history.
   void initializeHistory(const AssemblyState& state);
   PointSetup setupFor(const PairPoint& point) const;
+  // STAS at the step's first iterate: the rigid surface's motion over the step enters linearly
+  // (contact_pair.cpp).
+  bool predictsSurfaceMotion(const PointSetup& setup) const;
+  LocalStatus evaluateExactly(PairPoint& point, const PointSetup& setup,
+                              const NodeMatrix<double>& nodes, Eigen::VectorXd& force,
+                              Eigen::MatrixXd* tangent);
+  LocalStatus evaluateSurfaceMotionPredictor(PairPoint& point, const PointSetup& setup,
+                                             const AssemblyState& state,
+                                             const NodeMatrix<double>& nodes,
+                                             Eigen::VectorXd& force, Eigen::MatrixXd* tangent);
   // Dissipation w mu |N| Delta lambda of a point's trial state (contact_pair_energy.cpp).
   double pointDissipation(const PointTrial& trial) const;
   void accountDissipation();  // at commit: adds the step's dissipation to the run's

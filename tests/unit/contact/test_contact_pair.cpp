@@ -254,5 +254,46 @@ TEST(ContactPair, ASlidingPointKeepsSlidingAtTheStepStartOnlyWithinTheBand) {
     EXPECT_EQ(state, ContactState::Stick) << "first iterate, beyond the band";
 }
 
+// STAS at the step's first iterate (issue 14): the rigid surface's motion over the step enters
+// linearly, f(x, s_n+1) ~ f(x, s_n) - K(x, s_n) ds; from the second iterate on the force is the
+// exact one. A rigid plane over a 2 x 2 master square (area 4) penetrating it by g, moved along
+// its normal by `move` over the step (positive: away from the body); returns the total normal
+// force at the first and at the second evaluation of the step.
+std::pair<double, double> rigidPlaneForces(double g, double move) {
+  const Grid body = makeGrid(2, 2, 0, 0, 2, 2, 0, true, 0);
+  RigidSurface plane;
+  plane.shape = RigidSurface::Shape::Plane;
+  plane.origin = Vector3d(0, 0, -g);
+  plane.normal = -Vector3d::UnitZ();  // towards the body below z = 0
+  auto pair =
+      ContactPair::segmentToAnalytical(config(PointKind::SegmentToAnalytical), body.faces, plane,
+                                       [move](double time) { return Vector3d(0, 0, move * time); });
+  const Matrix3Xd& x = body.coordinates;
+  double first = 0, second = 0;
+  const Eigen::VectorXd f1 = assembleForce(*pair, x, x, 1);
+  const Eigen::VectorXd f2 = assembleForce(*pair, x, x, 1);
+  for (int node = 0; node < x.cols(); ++node) {
+    first += f1[3 * node + 2];
+    second += f2[3 * node + 2];
+  }
+  return {first, second};
+}
+
+TEST(ContactPair, RigidSurfaceMotionEntersTheStepsFirstIterateLinearly) {
+  const double g = 1e-3, pushing = 1e3 * g * 4;  // eps_N g A
+  const auto [still, stillAgain] = rigidPlaneForces(g, 0);
+  EXPECT_NEAR(std::abs(still), pushing, 1e-9 * pushing);
+  EXPECT_NEAR(stillAgain, still, 1e-12 * pushing);
+  // Pressed deeper by g: linear in the gap, so the prediction is the exact force 2 eps_N g A.
+  const auto [deeper, deeperAgain] = rigidPlaneForces(g, -g);
+  EXPECT_NEAR(deeper, 2 * still, 1e-9 * pushing);
+  EXPECT_NEAR(deeperAgain, 2 * still, 1e-9 * pushing);
+  // Lifted by 2g: the exact surface leaves the body (no force); the first iterate's prediction
+  // is the linear extrapolation -eps_N g A, a pull, as a meshed die's first iterate would be.
+  const auto [lifted, liftedAgain] = rigidPlaneForces(g, 2 * g);
+  EXPECT_NEAR(lifted, -still, 1e-9 * pushing);
+  EXPECT_EQ(liftedAgain, 0.0);
+}
+
 }  // namespace
 }  // namespace cc::contact
