@@ -189,8 +189,10 @@ ResultsWriter::~ResultsWriter() {
     // An interrupted run closes its file here; closing writes metadata, so readers wait for it.
     const ConsistencyLock change = state_->lock.beginChange();
     state_->closeFile();
-  } catch (const OutputError&) {
-    // Already reported by whoever interrupted the run; the steps flushed before stay readable.
+  } catch (...) {
+    // A destructor must not throw (it may run while an exception unwinds, out of memory too).
+    // What interrupted the run is reported by its caller; the steps flushed before stay
+    // readable.
   }
   state_.reset();
 }
@@ -227,10 +229,11 @@ void ResultsWriter::open(const std::string& path, const RunInfo& info, const Mes
     if (code != 0) throw OutputError(message);
   }
   h5::QuietErrors quiet;
-  // Readers of the old file wait until the new one has its first flush (ConsistencyLock).
-  const ConsistencyLock change = lock.beginChange();
   auto state = std::make_unique<State>();
   state->lock = std::move(lock);
+  // Readers of the old file wait until the new one has its first flush. Declared after `state`:
+  // released before a failure here closes the lock's descriptor.
+  const ConsistencyLock change = state->lock.beginChange();
   state->path = path;
   state->selection = selection;
   state->numNodes = mesh.numNodes();
