@@ -15,11 +15,7 @@ import sys
 import stress_script
 
 args = stress_script.parse_args()
-here = os.path.abspath(os.path.join(args.decks, "ironing"))
-source = open(os.path.join(here, "ironing_nts_mu03_equal.deck")).read()
-source = source.replace('"ironing_model.inc"', '"' + os.path.join(here, "ironing_model.inc") + '"')
-source = source.replace('"../../../meshes/ironing.geo"',
-                        '"' + os.path.abspath(os.path.join(args.decks, "../../meshes/ironing.geo")) + '"')
+source = stress_script.ironing_deck_text(args, "ironing_nts_mu03_equal.deck")
 assert "steps 100 dt=0.01" in source and "tangent=exact edge=fade name=die" in source
 
 

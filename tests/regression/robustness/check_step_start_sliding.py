@@ -16,11 +16,7 @@ import sys
 import stress_script
 
 args = stress_script.parse_args()
-here = os.path.abspath(os.path.join(args.decks, "ironing"))
-source = open(os.path.join(here, "ironing_sts_mu03_wide_smooth.deck")).read()
-source = source.replace('"ironing_model.inc"', '"' + os.path.join(here, "ironing_model.inc") + '"')
-source = source.replace('"../../../meshes/ironing.geo"',
-                        '"' + os.path.abspath(os.path.join(args.decks, "../../meshes/ironing.geo")) + '"')
+source = stress_script.ironing_deck_text(args, "ironing_sts_mu03_wide_smooth.deck")
 assert "steps 100 dt=0.01" in source and "surface=smooth" in source
 deck = os.path.join(args.scratch, "ironing_smooth_45.deck")
 open(deck, "w").write(source.replace("steps 100 dt=0.01", "steps 45 dt=0.01"))

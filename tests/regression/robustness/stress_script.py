@@ -1,7 +1,8 @@
 """Shared by the issue-14 scripts of this folder (check_newton_diagnostics.py,
 check_quadratic_tail.py, check_ironing_edge.py,
 check_step_start_sliding.py): their command line (--covcontact, --decks
-input/stress, --scratch) and the exact-tangent copy of the large-slip deck they run."""
+input/stress, --scratch), the exact-tangent copy of the large-slip deck they run, and the ironing
+decks with absolute paths."""
 import argparse
 import os
 
@@ -25,3 +26,13 @@ def exact_large_slip_deck(args):
     open(deck, "w").write(source.replace("../../meshes/block_on_base.geo", mesh)
                           .replace("name=interface", "name=interface tangent=exact"))
     return deck
+
+
+def ironing_deck_text(args, name):
+    """The text of input/stress/ironing/NAME with its include and mesh paths made absolute, so
+    that a variant of it can be written to the scratch folder."""
+    here = os.path.abspath(os.path.join(args.decks, "ironing"))
+    source = open(os.path.join(here, name)).read()
+    mesh = os.path.abspath(os.path.join(args.decks, "../../meshes/ironing.geo"))
+    return (source.replace('"ironing_model.inc"', '"' + os.path.join(here, "ironing_model.inc") + '"')
+            .replace('"../../../meshes/ironing.geo"', '"' + mesh + '"'))
