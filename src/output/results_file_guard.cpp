@@ -171,14 +171,20 @@ constexpr off_t kConsistencyByte = off_t{1} << 62;
 
 enum class LockOutcome { Granted, Busy, Unsupported };
 
-// Takes the open-file-description lock of `type` on the consistency byte, polling until it is
-// granted or `patience` has passed (Busy). Unsupported: the file system refuses such locks.
-LockOutcome takeConsistencyLock(int fd, short type, double patience) {
+// The consistency byte as an fcntl lock range of `type` (F_RDLCK, F_WRLCK or F_UNLCK).
+struct flock consistencyRange(short type) {
   struct flock range {};
   range.l_type = type;
   range.l_whence = SEEK_SET;
   range.l_start = kConsistencyByte;
   range.l_len = 1;
+  return range;
+}
+
+// Takes the open-file-description lock of `type` on the consistency byte, polling until it is
+// granted or `patience` has passed (Busy). Unsupported: the file system refuses such locks.
+LockOutcome takeConsistencyLock(int fd, short type, double patience) {
+  struct flock range = consistencyRange(type);
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(patience);
   auto pause = std::chrono::microseconds(100);
   for (;;) {
@@ -221,11 +227,7 @@ void ConsistencyLock::release() noexcept {
   if (ownsDescriptor_) {
     ::close(fd_);  // closing our own description releases its lock
   } else {
-    struct flock range {};
-    range.l_type = F_UNLCK;
-    range.l_whence = SEEK_SET;
-    range.l_start = kConsistencyByte;
-    range.l_len = 1;
+    struct flock range = consistencyRange(F_UNLCK);
     ::fcntl(fd_, F_OFD_SETLK, &range);
   }
   fd_ = -1;
