@@ -14,6 +14,7 @@
 #include <optional>
 #include <string>
 
+#include "common/stopwatch.hpp"
 #include "fem/coloring.hpp"
 #include "fem/sparsity_pattern.hpp"
 
@@ -35,10 +36,6 @@ constexpr std::size_t kDefaultMinItemsForThreads = 2048;
 // Pattern versions are unique in the process so that a solver keyed on a version never
 // confuses patterns of two assemblers.
 std::atomic<std::uint64_t> nextPatternVersion{1};
-
-double secondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 // Identity of an item list: the pattern and coloring follow it.
 struct TopologyKey {

@@ -31,16 +31,13 @@
 #include <vector>
 
 #include "common/errors.hpp"
+#include "common/stopwatch.hpp"
 #include "parallel/petsc_runtime.hpp"
 #include "solver/linear_solver.hpp"
 
 namespace cc {
 
 namespace {
-
-double secondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 void check(PetscErrorCode code, const char* what) {
   if (code != 0) throw std::runtime_error(fmt::format("PETSc: {} failed (error {})", what, code));

@@ -11,15 +11,12 @@
 #include <stdexcept>
 
 #include "common/errors.hpp"
+#include "common/stopwatch.hpp"
 #include "solver/linear_solver.hpp"
 
 namespace cc {
 
 namespace {
-
-double secondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 // A non-owning CHOLMOD view of an Eigen matrix; stype = 1: only the upper triangle is read.
 cholmod_sparse viewOf(const SparseMatrix& matrix) {
@@ -42,7 +39,7 @@ cholmod_sparse viewOf(const SparseMatrix& matrix) {
   return view;
 }
 
-int orderingCode(FillOrdering ordering) {
+int cholmodOrdering(FillOrdering ordering) {
   switch (ordering) {
     case FillOrdering::Amd:
       return CHOLMOD_AMD;
@@ -113,7 +110,7 @@ class CholmodSolver final : public LinearSolver {
     common_.supernodal = CHOLMOD_SUPERNODAL;
     if (ordering != FillOrdering::Automatic) {
       common_.nmethods = 1;
-      common_.method[0].ordering = orderingCode(ordering);
+      common_.method[0].ordering = cholmodOrdering(ordering);
     }
   }
   ~CholmodSolver() override {

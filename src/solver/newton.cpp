@@ -10,16 +10,13 @@
 #include <cstdlib>
 #include <limits>
 
+#include "common/stopwatch.hpp"
 #include "solver/rigid_body_modes.hpp"
 #include "solver/tangent_dump.hpp"
 
 namespace cc {
 
 namespace {
-
-double secondsSince(Newton::Clock::time_point start) {
-  return std::chrono::duration<double>(Newton::Clock::now() - start).count();
-}
 
 Eigen::VectorXd gather(const Eigen::VectorXd& nodal, const std::vector<int>& dofs) {
   Eigen::VectorXd values(static_cast<Eigen::Index>(dofs.size()));

@@ -11,17 +11,14 @@
 #include <vector>
 
 #include "common/errors.hpp"
+#include "common/stopwatch.hpp"
 #include "solver/linear_solver.hpp"
 
 namespace cc {
 
 namespace {
 
-double secondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-int orderingCode(FillOrdering ordering) {
+int umfpackOrdering(FillOrdering ordering) {
   switch (ordering) {
     case FillOrdering::Amd:
       return UMFPACK_ORDERING_AMD;
@@ -39,7 +36,7 @@ class UmfpackSolver final : public LinearSolver {
  public:
   explicit UmfpackSolver(FillOrdering ordering) {
     umfpack_dl_defaults(control_);
-    control_[UMFPACK_ORDERING] = orderingCode(ordering);
+    control_[UMFPACK_ORDERING] = umfpackOrdering(ordering);
   }
   ~UmfpackSolver() override { release(); }
   UmfpackSolver(const UmfpackSolver&) = delete;
