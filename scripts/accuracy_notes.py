@@ -79,6 +79,10 @@ CASE_TITLES = {
     "hertz_elastic_sphere": "Hertz: elastic sphere on an elastic block (STS)",
     "hertz_elastic_sphere_nts": "Hertz: elastic sphere on an elastic block (NTS)",
     "hertz_elastic_sphere_segments": "Hertz: elastic sphere on an elastic block (STS, integration=segments)",
+    "hertz_elastic_sphere_smooth": "Hertz: elastic sphere on an elastic block (STS, surface=smooth)",
+    "hertz_elastic_sphere_smooth_segments":
+        "Hertz: elastic sphere on an elastic block (STS, surface=smooth integration=segments)",
+    "hertz_elastic_sphere_augmented": "Hertz: elastic sphere on an elastic block (STS, enforcement=augmented)",
     "hertz_cylinder": "Hertz: rigid cylinder in plane strain (STAS)",
     "cattaneo_mindlin_sphere": "Cattaneo-Mindlin: elastic sphere on an elastic block (STS)",
     "cattaneo_mindlin_cylinder": "Cattaneo-Mindlin: elastic cylinder in plane strain (STS)",

@@ -26,6 +26,9 @@ QUANTITIES = {
     "hertz_elastic_sphere": HERTZ_SPHERE,
     "hertz_elastic_sphere_nts": HERTZ_SPHERE,
     "hertz_elastic_sphere_segments": HERTZ_SPHERE,
+    "hertz_elastic_sphere_smooth": HERTZ_SPHERE,
+    "hertz_elastic_sphere_smooth_segments": HERTZ_SPHERE,
+    "hertz_elastic_sphere_augmented": HERTZ_SPHERE,
     "hertz_cylinder": [("half_width", "b", "elements"), ("centre_pressure", "p0 centre", "rel"),
                        ("peak_pressure", "p0 max", "rel")],
     "cattaneo_mindlin_sphere": [("stick_radius", "c", "elements"), ("force:x", "Q(δt)", "rel"),
@@ -49,6 +52,9 @@ KINDS = {
     "NTS": ["hertz_elastic_sphere_nts", "patch_nts"],
     "STS-segments": ["hertz_elastic_sphere", "hertz_elastic_sphere_segments", "patch_sts",
                      "patch_sts_segments"],
+    "STS-smooth": ["hertz_elastic_sphere", "hertz_elastic_sphere_smooth",
+                   "hertz_elastic_sphere_smooth_segments"],
+    "STS-augmented": ["hertz_elastic_sphere", "hertz_elastic_sphere_augmented"],
 }
 SWEEP_TITLES = {"mesh": "mesh levels", "penalty": "penalty (alpha = eps_N h / E; patch tests and example 6.1: eps_N)",
                 "steps": "load steps", "domain": "domain size", "points": "Gauss points per direction"}
@@ -177,6 +183,8 @@ def plot_kind(kind, cases, by_case, directory):
 # The patch test's reaction without penalty compliance, E W^2 d / (2 T) (patch_test_sts_matching.deck):
 # the penalty sweep's reference includes the penalty in series, so its error is measured from this.
 PATCH_RIGID_FORCE = 1e-3
+# The indentation of hertz_elastic_sphere.deck (uz = -0.0096 t, one step to t = 1).
+ELASTIC_DELTA = 0.0096
 
 
 def penalty_error(values, style):
@@ -188,15 +196,23 @@ def penalty_error(values, style):
 
 
 def plot_penalty(by_case, directory):
-    figure, axes = plt.subplots(figsize=(6, 4))
+    figure, axes = plt.subplots(figsize=(8, 5))
     slopes = {}
     hertz = [r for r in by_case.get("hertz_rigid_sphere", []) if r["sweep"] == "penalty"
              and r.get("outcome") == "completed"]
     patch = [r for r in by_case.get("patch_sts_matching", []) if r["sweep"] == "penalty"
              and r.get("outcome") == "completed"]
+    def penalty_runs(case):
+        return [r for r in by_case.get(case, []) if r["sweep"] == "penalty" and r.get("outcome") == "completed"]
+    elastic, augmented = penalty_runs("hertz_elastic_sphere"), penalty_runs("hertz_elastic_sphere_augmented")
     series = [(hertz, "penetration", "Hertz STAS: max penetration / delta", 0.01, "abs"),
               (hertz, "force:z", "Hertz STAS: P(delta) error", 1, "rel"),
-              (patch, "reaction:upper_top:z", "patch STS, matching: force error", PATCH_RIGID_FORCE, "rigid")]
+              (patch, "reaction:upper_top:z", "patch STS, matching: force error", PATCH_RIGID_FORCE, "rigid"),
+              (elastic, "penetration", "Hertz STS m=4, penalty: max penetration / delta", ELASTIC_DELTA, "abs"),
+              (augmented, "penetration", "Hertz STS m=4, augmented: max penetration / delta", ELASTIC_DELTA,
+               "abs"),
+              (elastic, "force:z", "Hertz STS m=4, penalty: P(delta) error", 1, "rel"),
+              (augmented, "force:z", "Hertz STS m=4, augmented: P(delta) error", 1, "rel")]
     for runs, suffix, label, scale, style in series:
         points = sorted((r["value"], penalty_error(reference_of(r, suffix), style) / scale)
                         for r in runs if reference_of(r, suffix))
@@ -204,6 +220,7 @@ def plot_penalty(by_case, directory):
             axes.loglog(*zip(*points), marker="o", label=label)
             slopes[label] = observed_order(*zip(*points))
     axes.set_xlabel("penalty (Hertz: alpha = eps_N h / E; patch: eps_N)")
+    axes.set_xscale("log")
     axes.set_ylabel("error")
     axes.grid(True, which="both", alpha=0.3)
     axes.legend(fontsize=7)

@@ -162,6 +162,11 @@ def hertz_rigid_sphere():
     return runs
 
 
+# The automatic penalty is 10 E / h (alpha = 10): issue 16 asks for results independent of the
+# penalty from 1e-2 to 1e4 times it.
+AUTOMATIC_PENALTY_DECADES = (0.1, 1, 10, 100, 1e3, 1e4, 1e5)
+
+
 def hertz_elastic_sphere():
     deck = DECKS / "hertz_elastic_sphere.deck"
     case = "hertz_elastic_sphere"
@@ -176,6 +181,24 @@ def hertz_elastic_sphere():
     segments = [(r"^(contact sts .*points=\d+)", r"\1 integration=segments")]
     runs += [Variant("hertz_elastic_sphere_segments", "mesh", f"m{m}", deck, {"m": m},
                      penalty_for(deck, m, 30), replace=segments, value=m) for m in (3, 4, 6)]
+    # surface=smooth (Nagata patches on the faceted sphere, issue 16, part 2), alone and with
+    # integration=segments.
+    smooth = [(r"^(contact sts .*points=\d+)", r"\1 surface=smooth")]
+    runs += [Variant("hertz_elastic_sphere_smooth", "mesh", f"m{m}", deck, {"m": m},
+                     penalty_for(deck, m, 30), replace=smooth, value=m) for m in (3, 4, 6)]
+    smooth_segments = [(r"^(contact sts .*points=\d+)", r"\1 surface=smooth integration=segments")]
+    runs += [Variant("hertz_elastic_sphere_smooth_segments", "mesh", f"m{m}", deck, {"m": m},
+                     penalty_for(deck, m, 30), replace=smooth_segments, value=m) for m in (3, 4, 6)]
+    # enforcement=augmented (issue 16, part 3) over the mesh levels and over six decades of the
+    # penalty: the augmented results should not depend on it.
+    augmented = [(r"^(contact sts .*points=\d+)", r"\1 enforcement=augmented")]
+    runs += [Variant("hertz_elastic_sphere_augmented", "mesh", f"m{m}", deck, {"m": m},
+                     penalty_for(deck, m, 30), replace=augmented, value=m) for m in (3, 4, 6)]
+    runs += [Variant("hertz_elastic_sphere_augmented", "penalty", f"a{alpha:g}", deck, {"m": 4},
+                     penalty_for(deck, 4, alpha), replace=augmented, value=alpha)
+             for alpha in AUTOMATIC_PENALTY_DECADES]
+    runs += [Variant(case, "penalty", f"a{alpha:g}", deck, {"m": 4}, penalty_for(deck, 4, alpha), value=alpha)
+             for alpha in AUTOMATIC_PENALTY_DECADES if alpha not in (10, 100)]
     return runs
 
 
