@@ -46,14 +46,15 @@ def main():
     problems = []
     for solver, backend in {**DIRECT, **ITERATIVE}.items():
         text = re.sub(r"^solve\s*$", f"solve solver={solver}", deck.read_text(), flags=re.M)
-        variant = deck.parent / f".{deck.stem}_{solver}.deck"  # beside it: relative includes
+        # The variant lives in the scratch folder (never beside the deck, in the source tree): its
+        # own include and mesh paths made absolute; an include's paths stay relative to it.
+        text = re.sub(r'^(include|mesh)(\s+)"([^"/][^"]*)"',
+                      lambda m: f'{m[1]}{m[2]}"{(deck.parent / m[3]).resolve()}"', text, flags=re.M)
+        variant = scratch / f"{deck.stem}_{solver}.deck"
         variant.write_text(text)
         results = scratch / f"{solver}.h5"
-        try:
-            run = subprocess.run([args.covcontact, "run", str(variant), "-o", str(results),
-                                  "--threads", "1"], capture_output=True, text=True, timeout=600)
-        finally:
-            variant.unlink()
+        run = subprocess.run([args.covcontact, "run", str(variant), "-o", str(results),
+                              "--threads", "1"], capture_output=True, text=True, timeout=600)
         if run.returncode != 0:
             problems.append(f"{solver}: exit {run.returncode}: {run.stderr[-500:]}")
             continue
