@@ -204,7 +204,7 @@ LocalStatus ContactPair::evaluate(std::size_t item, const AssemblyState& state,
   for (int k = 0; k < point.layout.nodeCount; ++k)
     nodes.col(k) = state.current->col(point.nodes[k]);
   const PointSetup setup = setupFor(point);
-  if (predictsSurfaceMotion(setup))
+  if (predictsSurfaceMotion(setup, state))
     return evaluateSurfaceMotionPredictor(point, setup, state, nodes, force, tangent);
   return evaluateExactly(point, setup, nodes, force, tangent);
 }
@@ -239,8 +239,9 @@ LocalStatus ContactPair::evaluateExactly(PairPoint& point, const PointSetup& set
   return LocalStatus::success();
 }
 
-bool ContactPair::predictsSurfaceMotion(const PointSetup& setup) const {
-  return setup.kind == PointKind::SegmentToAnalytical && setup.history.stepStart && motion_;
+bool ContactPair::predictsSurfaceMotion(const PointSetup& setup, const AssemblyState& state) const {
+  return setup.kind == PointKind::SegmentToAnalytical && setup.history.stepStart && motion_ &&
+         !state.extrapolatedStart;
 }
 
 // STAS, the step's first iterate: the rigid surface's motion over the step enters linearly, as a

@@ -126,8 +126,8 @@ class ContactPair : public Contribution {
   void initializeHistory(const AssemblyState& state);
   PointSetup setupFor(const PairPoint& point) const;
   // STAS at the step's first iterate: the rigid surface's motion over the step enters linearly
-  // (contact_pair.cpp).
-  bool predictsSurfaceMotion(const PointSetup& setup) const;
+  // (contact_pair.cpp), unless Newton's predictor has already moved the bodies with it.
+  bool predictsSurfaceMotion(const PointSetup& setup, const AssemblyState& state) const;
   LocalStatus evaluateExactly(PairPoint& point, const PointSetup& setup,
                               const NodeMatrix<double>& nodes, Eigen::VectorXd& force,
                               Eigen::MatrixXd* tangent);

@@ -49,6 +49,13 @@ std::string criterionName(NewtonSpec::Criterion criterion) {
   throw std::logic_error("deck: undeclared convergence criterion");
 }
 
+std::string predictorName(NewtonSpec::Predictor predictor) {
+  for (const auto& [name, value] : newtonPredictors()) {
+    if (value == predictor) return name;
+  }
+  throw std::logic_error("deck: undeclared Newton predictor");
+}
+
 }  // namespace
 
 std::vector<ValueDecl> newtonParameters() {
@@ -69,7 +76,11 @@ std::vector<ValueDecl> newtonParameters() {
               .withRange(Range::greaterThan(1))
               .withDefault(defaultText(defaults.divergenceFactor)),
           boolValue("line_search", "backtracking line search along the Newton direction")
-              .withDefault(defaultText(defaults.lineSearch))};
+              .withDefault(defaultText(defaults.lineSearch)),
+          enumValue("predictor", choiceNames(newtonPredictors()),
+                    "first iterate of a step: the converged state with the prescribed increment "
+                    "(prescribed), or plus the last step's increment scaled to dt (extrapolate)")
+              .withDefault(predictorName(defaults.predictor))};
 }
 
 std::vector<ValueDecl> cutbackParameters() {
@@ -113,6 +124,9 @@ void applyNewtonParameters(const ParsedLine& line, NewtonSpec& newton) {
   }
   if (use("diverge")) newton.divergenceFactor = line.number("diverge");
   if (use("line_search")) newton.lineSearch = line.flag("line_search");
+  if (use("predictor")) {
+    newton.predictor = choiceValue(newtonPredictors(), line.text("predictor"));
+  }
 }
 
 void applyCutbackParameters(const ParsedLine& line, CutbackSpec& cutback) {

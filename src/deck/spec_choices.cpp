@@ -76,6 +76,13 @@ const Choices<NewtonSpec::Criterion>& convergenceCriteria() {
   return choices;
 }
 
+const Choices<NewtonSpec::Predictor>& newtonPredictors() {
+  static const Choices<NewtonSpec::Predictor> choices = {
+      {"prescribed", NewtonSpec::Predictor::Prescribed},
+      {"extrapolate", NewtonSpec::Predictor::Extrapolate}};
+  return choices;
+}
+
 const Choices<LinearSolverSpec::Method>& linearSolverMethods() {
   using Method = LinearSolverSpec::Method;
   static const Choices<Method> choices = {

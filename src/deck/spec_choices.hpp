@@ -44,6 +44,7 @@ const Choices<ContactSpec::MasterSurface>& masterSurfaces();
 const Choices<ContactSpec::MasterEdge>& masterEdges();
 const Choices<ContactSpec::Integration>& contactIntegrations();
 const Choices<NewtonSpec::Criterion>& convergenceCriteria();
+const Choices<NewtonSpec::Predictor>& newtonPredictors();
 const Choices<LinearSolverSpec::Method>& linearSolverMethods();
 const Choices<bool TangentPartsSpec::*>& tangentParts();  // snake_case field names
 const Choices<bool OutputSpec::*>& outputFields();

@@ -20,6 +20,10 @@ struct AssemblyState {
   const Eigen::Matrix3Xd* reference = nullptr;  // X
   const Eigen::Matrix3Xd* current = nullptr;    // x = X + u
   const Eigen::Matrix3Xd* previous = nullptr;   // x at the last converged step
+  // The step's first iterate is an extrapolation of the last step's motion (Newton's
+  // extrapolating predictor), not the converged state: a rigid surface is then evaluated where
+  // it stands at `time`, since the bodies have already moved with it.
+  bool extrapolatedStart = false;
 };
 
 struct LocalStatus {

@@ -42,6 +42,11 @@ struct LoadStepper::PhaseRun {
   Eigen::VectorXd converged;     // at the last converged step
   double time = 0;               // of the last converged step
   int step = 0;                  // number of the last converged step
+  // The last converged step's increment and its dt (NewtonSpec::Predictor::Extrapolate); empty
+  // before the first converged step of a run or a restart.
+  Eigen::VectorXd lastIncrement;
+  double lastDt = 0;
+  Eigen::VectorXd predicted;  // the increment predicted for the step being attempted
 };
 
 LoadStepper::LoadStepper(NonlinearProblem& problem, StepObserver& observer,
@@ -122,7 +127,8 @@ bool LoadStepper::runPhase(const PhaseSpec& phase, double phaseStart, PhaseRun& 
   while (position < phase.steps) {
     const double target = snapped(std::min(position + control.fraction, std::floor(position) + 1));
     const double targetTime = phaseStart + target * phase.dt;
-    const NewtonStep step{run.step + 1, control.attempts++, targetTime, run.time};
+    NewtonStep step{run.step + 1, control.attempts++, targetTime, run.time};
+    step.predictedIncrement = predictedIncrement(phase, targetTime, run);
     NewtonResult result = newton_->solve(step, phase.newton, run.displacement);
     if (result.status == NewtonResult::Status::Failed && result.failure == FailureKind::Diverged &&
         !phase.newton.lineSearch) {
@@ -137,7 +143,8 @@ bool LoadStepper::runPhase(const PhaseSpec& phase, double phaseStart, PhaseRun& 
                          "retrying the step with line search: " + result.message});
       NewtonSpec withLineSearch = phase.newton;
       withLineSearch.lineSearch = true;
-      const NewtonStep retry{run.step + 1, control.attempts++, targetTime, run.time};
+      NewtonStep retry{run.step + 1, control.attempts++, targetTime, run.time};
+      retry.predictedIncrement = step.predictedIncrement;
       result = newton_->solve(retry, withLineSearch, run.displacement);
     }
     if (result.status == NewtonResult::Status::Converged) {
@@ -155,6 +162,18 @@ bool LoadStepper::runPhase(const PhaseSpec& phase, double phaseStart, PhaseRun& 
   return true;
 }
 
+// The extrapolated increment of a step to targetTime: the last converged step's increment times
+// the ratio of the step sizes (a constant-velocity predictor), or none.
+const Eigen::VectorXd* LoadStepper::predictedIncrement(const PhaseSpec& phase, double targetTime,
+                                                       PhaseRun& run) const {
+  if (phase.newton.predictor != NewtonSpec::Predictor::Extrapolate || !(run.lastDt > 0) ||
+      run.lastIncrement.size() != run.converged.size()) {
+    return nullptr;
+  }
+  run.predicted = run.lastIncrement * ((targetTime - run.time) / run.lastDt);
+  return &run.predicted;
+}
+
 // Augmented-Lagrangian contact (Uzawa per step): while the problem updates multipliers, the step
 // is solved again at the same time from the displacement it converged to, with its relative
 // norms measured against the first solve's (the re-solve starts near equilibrium, and its own
@@ -164,6 +183,7 @@ bool LoadStepper::runPhase(const PhaseSpec& phase, double phaseStart, PhaseRun& 
 NewtonResult LoadStepper::augmentStep(const PhaseSpec& phase, const NewtonStep& step,
                                       NewtonResult result, PhaseRun& run) {
   NewtonStep resolve = step;
+  resolve.predictedIncrement = nullptr;  // the re-solve starts from the step's own solution
   resolve.referenceResidual = newton_->firstResidual();
   resolve.referenceEnergy = newton_->firstEnergy();
   for (;;) {
@@ -184,6 +204,8 @@ NewtonResult LoadStepper::augmentStep(const PhaseSpec& phase, const NewtonStep& 
 bool LoadStepper::acceptStep(const PhaseSpec& phase, const NewtonResult& result, double time,
                              bool phaseEnd, StepControl& control, PhaseRun& run) {
   problem_.commitStep();
+  run.lastIncrement = run.displacement - run.converged;
+  run.lastDt = time - run.time;
   run.converged = run.displacement;
   run.time = time;
   ++run.step;

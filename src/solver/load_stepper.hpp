@@ -65,6 +65,9 @@ class LoadStepper {
  private:
   struct PhaseRun;
   struct StepControl;
+  // NewtonSpec::Predictor::Extrapolate: the increment of the step to targetTime (null: none).
+  const Eigen::VectorXd* predictedIncrement(const PhaseSpec& phase, double targetTime,
+                                            PhaseRun& run) const;
   // Re-solves a converged step while the problem updates contact multipliers.
   NewtonResult augmentStep(const PhaseSpec& phase, const NewtonStep& step, NewtonResult result,
                            PhaseRun& run);

@@ -85,6 +85,10 @@ struct NewtonStep {
   // own first iteration, as for every ordinary step).
   double referenceResidual = 0;
   double referenceEnergy = 0;
+  // NewtonSpec::Predictor::Extrapolate: added to every dof (3 * numNodes) of the converged state
+  // before the first iteration; the prescribed values' remaining increment enters linearly.
+  // Null: the first iterate is the converged state.
+  const Eigen::VectorXd* predictedIncrement = nullptr;
 };
 
 struct NewtonResult {
@@ -156,6 +160,7 @@ class Newton {
   Eigen::Matrix3Xd previous_;
   int assemblies_ = 0;
   double assemblySeconds_ = 0;
+  bool extrapolatedStart_ = false;  // the next assembly is at an extrapolated first iterate
   struct {
     int step = -1, iteration = -1;
   } tangentCheck_;

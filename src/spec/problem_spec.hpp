@@ -154,6 +154,13 @@ struct NewtonSpec {
   Criterion criterion = Criterion::Energy;
   double divergenceFactor = 1e6;  // ||R_k|| > factor * ||R_0|| counts as divergence
   bool lineSearch = false;
+  // The first iterate of a step (issue 14). Prescribed: the converged state, the prescribed
+  // increment entering linearly (K_fp du_p, FEAP's predictor; the paper decks' counts).
+  // Extrapolate: the converged state plus the last converged step's increment scaled to this
+  // step's dt (a constant-velocity predictor, as the established code of issue 14 starts each
+  // increment), on every dof; what the prescribed values still differ by enters linearly.
+  enum class Predictor { Prescribed, Extrapolate };
+  Predictor predictor = Predictor::Prescribed;
 };
 
 // The linear solver of the Newton systems (deck: `solve solver=...`, issue 13). Auto keeps the
