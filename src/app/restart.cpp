@@ -25,12 +25,18 @@ StartState restartFrom(const std::string& file, int fromStep, Model& model) {
   start.time = point.time;
   start.displacement = std::move(point.record.displacement);
   start.stepSize = {point.record.stepFraction, point.record.easySteps};
+  start.lastIncrement = std::move(point.record.lastIncrement);
+  start.lastDt = point.record.lastDt;
   return start;
 }
 
 RestartRecord restartRecordOf(const Model& model, const Eigen::VectorXd& displacement,
-                              const StepSize& nextStepSize) {
+                              const StepSize& nextStepSize, const LoadStepper& stepper) {
   RestartRecord record = model.saveHistory();
+  if (const Eigen::VectorXd* increment = stepper.lastIncrement()) {
+    record.lastIncrement = *increment;
+    record.lastDt = stepper.lastDt();
+  }
   record.displacement = displacement;
   record.stepFraction = nextStepSize.fraction;
   record.easySteps = nextStepSize.easySteps;

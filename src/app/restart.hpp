@@ -20,6 +20,6 @@ StartState restartFrom(const std::string& file, int fromStep, Model& model);
 
 // The state a restart from the step that just converged needs.
 RestartRecord restartRecordOf(const Model& model, const Eigen::VectorXd& displacement,
-                              const StepSize& nextStepSize);
+                              const StepSize& nextStepSize, const LoadStepper& stepper);
 
 }  // namespace cc::app

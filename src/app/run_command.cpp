@@ -107,7 +107,7 @@ class RunObserver : public StepObserver {
                                             internalForce, withStress_ && writeOutput);
       if (writeOutput) {
         const RestartRecord restart =
-            restartRecordOf(model_, displacement, stepper_->nextStepSize());
+            restartRecordOf(model_, displacement, stepper_->nextStepSize(), *stepper_);
         record.restart = &restart;
         writer_.writeStep(record);
         ++writtenSteps_;
@@ -292,10 +292,14 @@ std::string costLine(const Model& model, const SolverStatistics& work, int itera
       "\"iterations\": {}, \"wall_s\": {:.6g}, "
       "\"cpu_s\": {}, \"peak_rss_mib\": {}, \"elements_s\": {}, \"contact_s\": {}, "
       "\"linear_solve_s\": {}, \"bytes_per_iteration\": {{\"force_sums\": {:.6g}, "
-      "\"matrix_entries\": {:.6g}, \"solution\": {:.6g}}}}}\n",
+      "\"matrix_entries\": {:.6g}, \"solution\": {:.6g}}}, \"linear_phases_rank0\": "
+      "{{\"analyses\": {}, \"analysis_s\": {:.6g}, \"factorizations\": {}, "
+      "\"factorization_s\": {:.6g}, \"solves\": {}, \"solve_s\": {:.6g}}}}}\n",
       processes, model.dofMap().numFree(), model.elementCount(), timings.assemblies, iterations,
       wallSeconds, column(0), column(1), column(2), column(3), column(4),
-      group.bytesMoved() * perIteration, total(5) * perIteration, total(6) * perIteration);
+      group.bytesMoved() * perIteration, total(5) * perIteration, total(6) * perIteration,
+      linear.analyses, linear.analysisSeconds, linear.factorizations, linear.factorizationSeconds,
+      linear.solves, linear.solveSeconds);
 }
 
 // Rank 0's value on every process: what the processes write into the shared file must be the

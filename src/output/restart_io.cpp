@@ -14,6 +14,9 @@ std::string restartGroupPath(int step) {
   return layout::stepGroupPath(step) + "/" + layout::kRestartGroup;
 }
 
+// The step's increment (nodes x 3) and attribute last_dt, when a phase extrapolates.
+constexpr const char* kLastIncrement = "last_increment";
+
 // Datasets of one history group keep the user's name in the "name" attribute (link names
 // replace '/', see layout::linkName).
 void writeNamed(h5::FileRef file, hid_t group, const std::string& name, const double* data,
@@ -33,6 +36,11 @@ void writeRestart(h5::FileRef file, hid_t stepGroup, const RestartRecord& restar
   if (withDisplacement) {
     h5::writeDoubles(file, group.get(), layout::kDisplacement, restart.displacement.data(),
                      static_cast<hsize_t>(restart.displacement.size() / 3), 3);
+  }
+  if (restart.lastIncrement.size() > 0) {
+    h5::writeAttribute(file, group.get(), "last_dt", restart.lastDt);
+    h5::writeDoubles(file, group.get(), kLastIncrement, restart.lastIncrement.data(),
+                     static_cast<hsize_t>(restart.lastIncrement.size() / 3), 3);
   }
   h5::Group elements = h5::createGroup(file, group.get(), layout::kElementHistoryGroup);
   for (const auto& [name, values] : restart.elementHistory) {
@@ -86,6 +94,11 @@ RestartPoint readRestart(const std::string& path, int step) {
       reader.readMatrix((own ? group : stepPath) + "/" + layout::kDisplacement);
   const Eigen::MatrixXd byNode = nodal.transpose();  // 3 x numNodes, column-major = node-major
   record.displacement = Eigen::Map<const Eigen::VectorXd>(byNode.data(), byNode.size());
+  if (reader.hasDataset(group + "/" + kLastIncrement)) {
+    const Eigen::MatrixXd increment = reader.readMatrix(group + "/" + kLastIncrement).transpose();
+    record.lastIncrement = Eigen::Map<const Eigen::VectorXd>(increment.data(), increment.size());
+    record.lastDt = reader.numberAttribute(group, "last_dt");
+  }
   const std::string elements = group + "/" + layout::kElementHistoryGroup;
   for (const std::string& link : reader.children(elements)) {
     const std::string dataset = elements + "/" + link;

@@ -70,6 +70,18 @@ LoadStepper::LoadStepper(NonlinearProblem& problem, StepObserver& observer,
 
 LoadStepper::~LoadStepper() = default;
 
+const Eigen::VectorXd* LoadStepper::lastIncrement() const {
+  const bool extrapolates = std::any_of(phases_.begin(), phases_.end(), [](const PhaseSpec& phase) {
+    return phase.newton.predictor == NewtonSpec::Predictor::Extrapolate;
+  });
+  if (!extrapolates || !activeRun_ || activeRun_->lastIncrement.size() == 0) return nullptr;
+  return &activeRun_->lastIncrement;
+}
+
+double LoadStepper::lastDt() const {
+  return activeRun_ ? activeRun_->lastDt : 0.0;
+}
+
 SolverStatistics LoadStepper::statistics() const {
   SolverStatistics statistics;
   statistics.steps = summary_.stepsConverged;
@@ -100,6 +112,15 @@ RunSummary LoadStepper::run(const StartState& start) {
   run.converged = run.displacement;
   run.time = start.time;
   run.step = start.step;
+  if (start.lastIncrement.size() == size) {
+    run.lastIncrement = start.lastIncrement;
+    run.lastDt = start.lastDt;
+  }
+  activeRun_ = &run;
+  struct Inactive {
+    const PhaseRun*& run;
+    ~Inactive() { run = nullptr; }
+  } inactiveAfterwards{activeRun_};
   nextStepSize_ = start.stepSize;
   resumeStepSize_ = start.step > 0;
   summary_.finalTime = start.time;

@@ -46,6 +46,10 @@ struct StartState {
   double time = 0;
   Eigen::VectorXd displacement;  // 3 * numNodes; empty = zero
   StepSize stepSize;
+  // The increment and dt of the step started from (LoadStepper::lastIncrement); empty: the
+  // first step is not extrapolated.
+  Eigen::VectorXd lastIncrement;
+  double lastDt = 0;
 };
 
 class LoadStepper {
@@ -59,6 +63,10 @@ class LoadStepper {
   // The step size of the next step; during StepObserver::stepConverged, the one that follows
   // the converged step (what a restart from that step needs).
   StepSize nextStepSize() const { return nextStepSize_; }
+  // During StepObserver::stepConverged, the converged step's increment and dt if a phase
+  // extrapolates (NewtonSpec::Predictor::Extrapolate), what a restart needs; otherwise null.
+  const Eigen::VectorXd* lastIncrement() const;
+  double lastDt() const;
   // Diagnostics: see Newton::setTangentCheck.
   void setTangentCheck(int step, int iteration) { tangentCheck_ = {step, iteration}; }
 
@@ -88,6 +96,7 @@ class LoadStepper {
   StepSize nextStepSize_;
   bool resumeStepSize_ = false;  // a restart's step size still waits for its phase
   std::pair<int, int> tangentCheck_{-1, -1};
+  const PhaseRun* activeRun_ = nullptr;  // during run()
 };
 
 }  // namespace cc

@@ -237,5 +237,67 @@ TEST(LoadStepper, ExtrapolationConvergesToTheSameStatesInFewerIterations) {
   EXPECT_NEAR(observer.steps.back().displacement[9], 3.0, 1e-8);
 }
 
+TEST(LoadStepper, RestartWithTheLastIncrementPredictsAsTheFullRun) {
+  // A restart that carries the converged step's increment and dt (the restart record's
+  // last_increment) extrapolates its first step as the full run did: the same iterations per
+  // step and the same states. Without them its first step starts from the converged state.
+  auto hardening = [] {
+    return SpringChain(3, SpringLaw::cubic(1.0, 1.0), {}, [](double t) { return 0.5 * t; });
+  };
+  SpringChain full = hardening();
+  RecordingObserver fullObserver;
+  std::vector<Eigen::VectorXd> increments;
+  std::vector<double> dts;
+  struct Recorder : RecordingObserver {
+    LoadStepper* stepper = nullptr;
+    std::vector<Eigen::VectorXd>* increments = nullptr;
+    std::vector<double>* dts = nullptr;
+    void stepConverged(int step, double time, int iterationCount, int cutbackCount,
+                       const Eigen::VectorXd& displacement, const Eigen::VectorXd& internalForce,
+                       bool writeOutput) override {
+      RecordingObserver::stepConverged(step, time, iterationCount, cutbackCount, displacement,
+                                       internalForce, writeOutput);
+      ASSERT_NE(stepper->lastIncrement(), nullptr);
+      increments->push_back(*stepper->lastIncrement());
+      dts->push_back(stepper->lastDt());
+    }
+  } recorder;
+  recorder.increments = &increments;
+  recorder.dts = &dts;
+  LoadStepper fullStepper(full, recorder, {extrapolating(phase(6, 0.5))});
+  recorder.stepper = &fullStepper;
+  ASSERT_EQ(fullStepper.run().outcome, RunSummary::Outcome::Completed);
+  ASSERT_EQ(recorder.steps.size(), 6u);
+  EXPECT_EQ(dts[2], 0.5);
+  EXPECT_LT(
+      (increments[2] - (recorder.steps[2].displacement - recorder.steps[1].displacement)).norm(),
+      1e-15);
+
+  for (const bool withIncrement : {true, false}) {
+    SpringChain restarted = hardening();
+    RecordingObserver observer;
+    LoadStepper stepper(restarted, observer, {extrapolating(phase(6, 0.5))});
+    StartState start;
+    start.step = 3;
+    start.time = recorder.steps[2].time;
+    start.displacement = recorder.steps[2].displacement;
+    if (withIncrement) {
+      start.lastIncrement = increments[2];
+      start.lastDt = dts[2];
+    }
+    ASSERT_EQ(stepper.run(start).outcome, RunSummary::Outcome::Completed);
+    ASSERT_EQ(observer.steps.size(), 3u);
+    const int fullFirst = recorder.steps[3].iterations;
+    if (withIncrement) {
+      EXPECT_EQ(iterationCounts(observer),
+                (std::vector<int>{fullFirst, recorder.steps[4].iterations,
+                                  recorder.steps[5].iterations}));
+      EXPECT_LT((observer.steps[2].displacement - recorder.steps[5].displacement).norm(), 1e-14);
+    } else {
+      EXPECT_GT(observer.steps[0].iterations, fullFirst);  // not extrapolated
+    }
+  }
+}
+
 }  // namespace
 }  // namespace cc
