@@ -11,6 +11,10 @@
   processes, as a scheduler does) after step 8: exit 4 as in a serial run, every reported step
   in the file; continued with --restart on 1 and on 3 processes, every remaining step as the
   uninterrupted serial run (iterations exactly, forces to 1e-8).
+--case predictor: the crossing deck with `predictor=extrapolate` (issue 14) on 2 processes: the
+  serial run's steps, iterations and forces (the prediction and its reference norms are formed
+  from the process-summed tangent products), and a restart on 2 processes from step 8 of that
+  file (its restart data carry the step's increment) continues as the uninterrupted serial run.
 --case errors: `check` on 2 processes prints the serial output once; a deck error on 2
   processes exits with the serial exit code and is reported once; a persistent inverted element (input/stress/inverted_element_persistent.deck) exits
   with the serial code, keeps the same converged steps and names the element once; SIGKILL of
@@ -275,6 +279,29 @@ def restart_case(args):
               f"run (largest difference {worst:.1e})")
 
 
+def predictor_case(args):
+    source = os.path.join(args.source, "tests/regression/parallel/decks/block_crossing_partition.deck")
+    text = open(source).read()
+    assert "\nsolve\n" in text
+    deck = os.path.join(args.scratch, "crossing_predictor.deck")
+    here = os.path.dirname(source)
+    text = re.sub(r'^(include|mesh)(\s+)"([^"/][^"]*)"',
+                  lambda m: f'{m[1]}{m[2]}"{os.path.normpath(os.path.join(here, m[3]))}"', text,
+                  flags=re.M)
+    open(deck, "w").write(text.replace("\nsolve\n", "\nsolve\n  newton predictor=extrapolate\n"))
+    serial = os.path.join(args.scratch, "serial.h5")
+    distributed = os.path.join(args.scratch, "two.h5")
+    run_ok(args, 1, "run", deck, "-o", serial, "-q")
+    run_ok(args, 2, "run", deck, "-o", distributed, "-q")
+    count, worst = compare_steps(serial, distributed)
+    continued = os.path.join(args.scratch, "continued.h5")
+    run_ok(args, 2, "run", deck, "-o", continued, "--restart", distributed, "--from-step", "8",
+           "-q")
+    rest, rest_worst = compare_steps(serial, continued, 9)
+    print(f"predictor=extrapolate on 2 processes: {count} steps as serial (largest difference "
+          f"{worst:.1e}); restarted from step 8 on 2: {rest} steps as serial ({rest_worst:.1e})")
+
+
 def wait_until_unlocked(path, seconds=60):
     """Waits until no process holds the writer's lock on `path`. A process being ended still
     holds its files for a moment after its command line has gone from /proc (the kernel frees
@@ -348,12 +375,14 @@ def main():
     parser.add_argument("--source", required=True, help="the source tree")
     parser.add_argument("--scratch", required=True)
     parser.add_argument("--case", required=True,
-                        choices=["crossing", "restart", "errors", "segments", "augmented"])
+                        choices=["crossing", "restart", "errors", "segments", "augmented",
+                                 "predictor"])
     args = parser.parse_args()
     shutil.rmtree(args.scratch, ignore_errors=True)
     os.makedirs(args.scratch)
     {"crossing": crossing_case, "restart": restart_case, "errors": errors_case,
-     "segments": segments_case, "augmented": augmented_case}[args.case](args)
+     "segments": segments_case, "augmented": augmented_case,
+     "predictor": predictor_case}[args.case](args)
 
 
 if __name__ == "__main__":
