@@ -1,0 +1,124 @@
+#!/usr/bin/python3
+"""The ironing decks of issue 14 with and without `newton predictor=extrapolate`: Newton
+iterations per step in developed sliding (t > 0.4), retries and cut-backs, the final time and
+the mean die force of each run, as the Markdown table of docs/verification/sliding.md ("Seventh
+session"). One command from a built checkout:
+
+    /usr/bin/python3 scripts/ironing_predictor.py [--only SUBSTRING] [--limit SECONDS] [--jobs N]
+
+Each run gets --threads 1 and is interrupted (SIGINT: its converged steps are kept) after
+--limit seconds (default 200). Besides the committed decks it runs the variants the table
+names (v): STS with `surface=smooth` added to a faceted deck, NTS with the energy criterion
+(`converge=residual` removed) and STAS without the line search. The variants and results go to
+--work (default /tmp/ironing_predictor); nothing is written into the source tree.
+About 40 minutes on 2 cores for everything (--jobs 2).
+"""
+import argparse
+import concurrent.futures
+import os
+import re
+import signal
+import subprocess
+import sys
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(ROOT, "scripts"))
+import ironing_summary  # noqa: E402
+
+DECKS = os.path.join(ROOT, "input", "stress", "ironing")
+
+# (name of the variant, deck it is made from, edit of its text)
+VARIANTS = [
+    ("sts_mu03_equal_smooth", "ironing_sts_mu03_equal", ("name=die", "name=die surface=smooth")),
+    ("sts_mu0_wide_smooth", "ironing_sts_mu0_wide", ("name=die", "name=die surface=smooth")),
+    ("sts_mu06_wide_smooth", "ironing_sts_mu06_wide", ("name=die", "name=die surface=smooth")),
+    ("nts_mu03_wide_smooth_energy", "ironing_nts_mu03_wide_smooth_residual",
+     ("  newton converge=residual residual=1e-8\n", "")),
+    ("nts_mu03_equal_smooth_energy", "ironing_nts_mu03_equal_smooth_residual",
+     ("  newton converge=residual residual=1e-8\n", "")),
+    ("stas_mu03_no_line_search", "ironing_stas_mu03", ("  newton line_search=yes\n", "")),
+]
+
+
+def absolute_paths(text):
+    mesh = os.path.join(ROOT, "meshes", "ironing.geo")
+    return (text.replace('"ironing_model.inc"', '"' + os.path.join(DECKS, "ironing_model.inc") + '"')
+            .replace('"../../../meshes/ironing.geo"', '"' + mesh + '"'))
+
+
+def with_predictor(text):
+    return re.sub(r"^solve(.*)$", r"solve\1\n  newton predictor=extrapolate", text, count=1,
+                  flags=re.M)
+
+
+def cases():
+    """(name, deck text) of every deck and variant."""
+    out = []
+    for deck in sorted(os.listdir(DECKS)):
+        if deck.endswith(".deck"):
+            out.append((deck[:-5], absolute_paths(open(os.path.join(DECKS, deck)).read())))
+    for name, source, (old, new) in VARIANTS:
+        text = absolute_paths(open(os.path.join(DECKS, source + ".deck")).read())
+        if old not in text:
+            sys.exit(f"variant {name}: '{old.strip()}' not in {source}.deck")
+        out.append((name + " (v)", text.replace(old, new, 1)))
+    return out
+
+
+def run(covcontact, work, name, text, limit):
+    stem = os.path.join(work, re.sub(r"[^A-Za-z0-9_]", "_", name))
+    open(stem + ".deck", "w").write(text)
+    process = subprocess.Popen([covcontact, "run", stem + ".deck", "-o", stem + ".h5",
+                                "--threads", "1"], stdout=subprocess.PIPE,
+                               stderr=subprocess.STDOUT, text=True)
+    try:
+        output, _ = process.communicate(timeout=limit)
+    except subprocess.TimeoutExpired:
+        process.send_signal(signal.SIGINT)
+        output, _ = process.communicate()
+    retries = re.search(r"(\d+) retried with line search", output)
+    cutbacks = re.search(r"(\d+) cut-backs in", output)
+    summary = ironing_summary.summarize(stem + ".h5") if os.path.exists(stem + ".h5") else {}
+    return {"retries": int(retries.group(1)) if retries else 0,
+            "cutbacks": int(cutbacks.group(1)) if cutbacks else None, **summary}
+
+
+def cell(result):
+    developed = result.get("its_developed")
+    text = f"{developed:.2f}" if developed is not None else "-"
+    if result.get("final_t", 0) < 1 - 1e-9:
+        text += f" (stopped at t = {result.get('final_t', 0):.3g})"
+    return text
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--covcontact", default=os.path.join(ROOT, "build", "src", "app",
+                                                             "covcontact"))
+    parser.add_argument("--work", default="/tmp/ironing_predictor")
+    parser.add_argument("--only", default="", help="only the cases whose name contains this")
+    parser.add_argument("--limit", type=float, default=200, help="seconds per run")
+    parser.add_argument("--jobs", type=int, default=2)
+    args = parser.parse_args()
+    os.makedirs(args.work, exist_ok=True)
+    todo = [(name, text) for name, text in cases() if args.only in name]
+    jobs = []
+    with concurrent.futures.ThreadPoolExecutor(args.jobs) as pool:
+        for name, text in todo:
+            for label, variant in (("default", text), ("extrapolate", with_predictor(text))):
+                jobs.append((name, label, pool.submit(run, args.covcontact, args.work,
+                                                      f"{name}_{label}", variant, args.limit)))
+    results = {(name, label): job.result() for name, label, job in jobs}
+    print("| deck | default: developed | extrapolate: developed | extrapolate: its "
+          "(line-search retries / cut-backs), mean Fz |")
+    print("|---|---|---|---|")
+    for name, _ in todo:
+        before, after = results[(name, "default")], results[(name, "extrapolate")]
+        fz = after.get("Fz_mean")
+        print(f"| `{name}` | {cell(before)} | {cell(after)} | {after.get('iterations', 0)} "
+              f"({after['retries']} / {after['cutbacks']})"
+              + (f", {abs(fz):.2f}" if fz is not None else "") + " |")
+
+
+if __name__ == "__main__":
+    main()
