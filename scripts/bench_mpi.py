@@ -8,6 +8,7 @@ solve per process, and the bytes moved between processes per Newton iteration.
 
     /usr/bin/python3 scripts/bench_mpi.py [--sizes 57k,125k] [--build build]
         [--runs mumps_np1,mumps_np2,gamg_np1,gamg_np2] [--press-only] [--pin] [--twice] [--cores]
+        [--predictor] [--output FILE.json]
 
 --press-only runs the press step alone (for 1.2 M); --pin pins every run to cores (the two cores of
 the development machine differ in speed by 1.45x); --twice runs two 1-process copies at once (is
@@ -135,20 +136,28 @@ def pinnings(args, name):
         yield name, []
 
 
-def press_only_copy(deck, work):
-    """The deck with its sliding phase dropped and its mesh path made absolute."""
+def deck_copy(deck, work, press_only=False, predictor=False):
+    """A copy of the deck in the work directory with its mesh path made absolute: its sliding
+    phase dropped (press_only), `newton predictor=extrapolate` added after `solve` (predictor)."""
     with open(deck) as stream:
         lines = stream.read().splitlines()
     steps = [i for i, line in enumerate(lines) if line.strip().startswith("steps ")]
     if len(steps) != 2:
         sys.exit(f"{deck}: expected a press and a sliding `steps` line, found {len(steps)}")
-    del lines[steps[1]]
+    if press_only:
+        del lines[steps[1]]
+    if predictor:
+        solve = [i for i, line in enumerate(lines) if line.strip() == "solve"]
+        if len(solve) != 1:
+            sys.exit(f"{deck}: expected one bare `solve` line")
+        lines.insert(solve[0] + 1, "  newton predictor=extrapolate")
     folder = os.path.dirname(os.path.abspath(deck))
     for i, line in enumerate(lines):
         if line.startswith("mesh \""):
             relative = line.split('"')[1]
             lines[i] = line.replace(relative, os.path.normpath(os.path.join(folder, relative)), 1)
-    copy = os.path.join(work, os.path.basename(deck)[:-5] + "_press.deck")
+    suffix = ("_press" if press_only else "") + ("_predictor" if predictor else "")
+    copy = os.path.join(work, os.path.basename(deck)[:-5] + suffix + ".deck")
     with open(copy, "w") as stream:
         stream.write("\n".join(lines) + "\n")
     return copy
@@ -186,6 +195,9 @@ def main():
     parser.add_argument("--press-only", action="store_true",
                         help="run only the press step of each deck (a copy in the work directory): "
                              "for sizes where five steps on one process do not fit in a session")
+    parser.add_argument("--predictor", action="store_true",
+                        help="run the decks with `newton predictor=extrapolate` (issue 14; a copy "
+                             "in the work directory)")
     parser.add_argument("--output", default=os.path.join(ROOT, "docs", "performance",
                                                          "distributed.json"))
     args = parser.parse_args()
@@ -199,8 +211,8 @@ def main():
     cores = core_speeds(args) if args.cores else previous.get("core_cpu_s")
     for size in args.sizes.split(","):
         deck = os.path.join(ROOT, "input", "performance", f"scaling_{size}.deck")
-        if args.press_only:
-            deck = press_only_copy(deck, work)
+        if args.press_only or args.predictor:
+            deck = deck_copy(deck, work, args.press_only, args.predictor)
         runs = {}
         for name, command in configurations(args, deck, work):
             if name.split("_core")[0].removesuffix("_bound") not in args.runs.split(","):
