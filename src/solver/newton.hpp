@@ -1,6 +1,9 @@
 // Newton's method for one load step, FEAP style: the first iteration carries the prescribed
 // displacement increment as a linear predictor (K_fp du_p on the right-hand side), every
 // iteration logs the residual and energy norms, convergence follows NewtonSpec::criterion.
+// With NewtonStep::predictedIncrement (deck: predictor=extrapolate) the first iterate is the
+// converged state plus that increment, only the rest of the prescribed increment enters
+// linearly, and the first norms are at least those of the predicted increment (newton.cpp).
 //
 // Iterations per step = number of linear solves (FEAP's count of TANG,,1 cycles):
 //  - Energy: after solve k, |du_k . rhs_k| <= energyTolerance |du_1 . rhs_1| -> k iterations.
