@@ -83,8 +83,8 @@ struct Evaluation {
 
 // Sums the pair's item forces into a global vector at configuration x.
 Eigen::VectorXd assembleForce(ContactPair& pair, const Matrix3Xd& x, const Matrix3Xd& previous,
-                              double time) {
-  AssemblyState state{time, time - 1, &x, &x, &previous};
+                              double time, bool extrapolatedStart = false) {
+  AssemblyState state{time, time - 1, &x, &x, &previous, extrapolatedStart};
   EXPECT_TRUE(pair.prepare(state).ok);
   Eigen::VectorXd global = Eigen::VectorXd::Zero(3 * x.cols());
   for (std::size_t i = 0; i < pair.itemCount(); ++i) {
@@ -258,8 +258,9 @@ TEST(ContactPair, ASlidingPointKeepsSlidingAtTheStepStartOnlyWithinTheBand) {
 // linearly, f(x, s_n+1) ~ f(x, s_n) - K(x, s_n) ds; from the second iterate on the force is the
 // exact one. A rigid plane over a 2 x 2 master square (area 4) penetrating it by g, moved along
 // its normal by `move` over the step (positive: away from the body); returns the total normal
-// force at the first and at the second evaluation of the step.
-std::pair<double, double> rigidPlaneForces(double g, double move) {
+// force at the first and at the second evaluation of the step. `extrapolatedStart`: the first
+// iterate comes from Newton's extrapolating predictor (the bodies have moved already).
+std::pair<double, double> rigidPlaneForces(double g, double move, bool extrapolatedStart = false) {
   const Grid body = makeGrid(2, 2, 0, 0, 2, 2, 0, true, 0);
   RigidSurface plane;
   plane.shape = RigidSurface::Shape::Plane;
@@ -270,7 +271,7 @@ std::pair<double, double> rigidPlaneForces(double g, double move) {
                                        [move](double time) { return Vector3d(0, 0, move * time); });
   const Matrix3Xd& x = body.coordinates;
   double first = 0, second = 0;
-  const Eigen::VectorXd f1 = assembleForce(*pair, x, x, 1);
+  const Eigen::VectorXd f1 = assembleForce(*pair, x, x, 1, extrapolatedStart);
   const Eigen::VectorXd f2 = assembleForce(*pair, x, x, 1);
   for (int node = 0; node < x.cols(); ++node) {
     first += f1[3 * node + 2];
@@ -293,6 +294,20 @@ TEST(ContactPair, RigidSurfaceMotionEntersTheStepsFirstIterateLinearly) {
   const auto [lifted, liftedAgain] = rigidPlaneForces(g, 2 * g);
   EXPECT_NEAR(lifted, -still, 1e-9 * pushing);
   EXPECT_EQ(liftedAgain, 0.0);
+}
+
+// With Newton's extrapolating predictor the first iterate already carries the last step's motion,
+// so the surface is evaluated where it stands at the step's end: the lifted plane gives the exact
+// 0 at once (the linear prediction above would pull with -eps_N g A).
+TEST(ContactPair, RigidSurfaceIsExactAtAnExtrapolatedFirstIterate) {
+  const double g = 1e-3, pushing = 1e3 * g * 4;  // eps_N g A
+  const auto [lifted, liftedAgain] = rigidPlaneForces(g, 2 * g, true);
+  EXPECT_EQ(lifted, 0.0);
+  EXPECT_EQ(liftedAgain, 0.0);
+  const double still = rigidPlaneForces(g, 0).first;
+  const auto [deeper, deeperAgain] = rigidPlaneForces(g, -g, true);
+  EXPECT_NEAR(deeper, 2 * still, 1e-9 * pushing);
+  EXPECT_NEAR(deeperAgain, 2 * still, 1e-9 * pushing);
 }
 
 }  // namespace
