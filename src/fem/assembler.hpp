@@ -67,7 +67,8 @@ class Assembler {
   int threads() const;
   // Restricts the items evaluated and added (contribution index in the constructor's order).
   void setItemFilter(ItemFilter filter);
-  // Contributions with fewer items are evaluated on one thread (default 2048, see assembler.cpp).
+  // Contributions with less work than this many Hex8 elements are evaluated on one thread
+  // (default 2048; each contribution's items weighted by their measured cost, see assembler.cpp).
   void setMinItemsForThreads(std::size_t items);
 
  private:

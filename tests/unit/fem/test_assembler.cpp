@@ -5,7 +5,9 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <ctime>
 #include <limits>
 #include <set>
 
@@ -331,6 +333,59 @@ class ThrowingItems : public ListContribution {
     return LocalStatus::success();
   }
 };
+
+// Grid springs whose items each burn `itemCpuSeconds` of thread CPU time and record whether an
+// item ran inside an active parallel region.
+class CostlyGridSprings : public GridSprings {
+ public:
+  CostlyGridSprings(int nx, int ny, int nz, double itemCpuSeconds)
+      : GridSprings(nx, ny, nz), itemCpuSeconds_(itemCpuSeconds) {}
+  LocalStatus evaluate(std::size_t item, const AssemblyState& state, Eigen::VectorXd& force,
+                       Eigen::MatrixXd* tangent) override {
+    const double start = threadCpuSeconds();
+    while (threadCpuSeconds() - start < itemCpuSeconds_) {
+    }
+    if (omp_in_parallel()) ranInParallel = true;
+    return GridSprings::evaluate(item, state, force, tangent);
+  }
+  std::atomic<bool> ranInParallel = false;
+
+ private:
+  static double threadCpuSeconds() {
+    timespec now{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
+    return static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec);
+  }
+  double itemCpuSeconds_;
+};
+
+// The threshold for threads weighs the item count by the measured cost per item (issue 13):
+// 200 items of 100 us (20 ms of work) go parallel once measured, 200 cheap ones do not, and
+// neither does the first, unmeasured assembly (counted in items: 200 < 2048).
+TEST(Assembler, ExpensiveItemsGoParallelOnceTheirCostIsMeasured) {
+  const int saved = omp_get_max_threads();
+  omp_set_num_threads(2);
+  CostlyGridSprings costly(10, 5, 4, 100e-6), cheap(10, 5, 4, 0);
+  ASSERT_EQ(costly.itemCount(), 200u);
+  for (CostlyGridSprings* grid : {&costly, &cheap}) {
+    const DofMap dofs = gridDofs(*grid, 4);
+    const Eigen::Matrix3Xd reference = grid->referenceMatrix();
+    const Eigen::Matrix3Xd current = displaced(reference);
+    AssemblyState state;
+    state.reference = &reference;
+    state.current = &current;
+    state.previous = &reference;
+    Assembler assembler(dofs, {grid});
+    Assembled first, second;
+    assembler.assemble(state, first.force, &first.matrices);
+    EXPECT_FALSE(grid->ranInParallel) << "first assembly, item cost " << (grid == &costly);
+    assembler.assemble(state, second.force, &second.matrices);
+    EXPECT_EQ(grid->ranInParallel, grid == &costly);
+    // Serial and parallel evaluation add in the same order (by color): equal bit for bit.
+    EXPECT_EQ((second.force - first.force).cwiseAbs().maxCoeff(), 0.0);
+  }
+  omp_set_num_threads(saved);
+}
 
 TEST(Assembler, OtherExceptionsFromItemsAreRethrownAfterTheParallelLoop) {
   ListFixture fixture;
