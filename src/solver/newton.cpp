@@ -96,6 +96,23 @@ bool convergedAfterSolve(const NewtonSpec& spec, const Norms& norms, int iterati
 // line search does: the step fails at once and the load stepper retries it with the line search
 // (before, the retry came after maxIterations failed iterations). The retry is the same solve as
 // before, so its iteration count is too; a step that never revisits a set is untouched.
+// The same without any state change: plain Newton alternating between two iterates whose
+// residual norms repeat (the slip direction of stiffly penalized points flipping back and
+// forth; issue 16: 0.267, 0.294, 0.267, ... of the first residual for 30 iterations in a press
+// at 100 times the automatic penalty). Two periods of norms equal to kCycleNormMatch, checked
+// only while the residual is above kCycleCheckAbove of the first (far from the round-off floor
+// and from the small non-smooth stagnations near convergence, which a retry would not help).
+inline constexpr double kCycleNormMatch = 1e-3;
+inline constexpr double kCycleCheckAbove = 1e-3;
+bool residualCycles(const std::vector<double>& norms) {
+  const std::size_t k = norms.size();
+  if (k < 5 || norms[k - 1] <= kCycleCheckAbove * norms[0]) return false;
+  auto repeats = [&](std::size_t i) {
+    return std::abs(norms[i] - norms[i - 2]) <= kCycleNormMatch * norms[i];
+  };
+  return repeats(k - 1) && repeats(k - 2);
+}
+
 bool enteredCycle(std::vector<std::uint64_t>& activeSets, const ContactChanges& changes) {
   const bool changed = changes.state > 0 || changes.segment > 0;
   const bool seen = changed && std::find(activeSets.begin(), activeSets.end(), changes.signature) !=
@@ -259,6 +276,7 @@ NewtonResult Newton::solve(const NewtonStep& step, const NewtonSpec& spec,
   // and energy of the step without a predictor are to first order (K_ff du_1 = rhs_1), or the
   // predictor's own residual and energy if larger (a poor prediction).
   Eigen::VectorXd predictedFree, predictedForce;
+  std::vector<double> residualHistory;  // ||rhs|| per iteration
   for (int iteration = 1; iteration <= spec.maxIterations; ++iteration) {
     Eigen::VectorXd rhs;
     ContactChanges changes;
@@ -284,6 +302,13 @@ NewtonResult Newton::solve(const NewtonStep& step, const NewtonSpec& spec,
                                 iteration));
     }
     norms.residual = safeNorm(rhs);
+    residualHistory.push_back(norms.residual);
+    if (!spec.lineSearch && residualCycles(residualHistory)) {
+      return failed(iteration - 1, FailureKind::Diverged,
+                    fmt::format("the residual norms of iterations {} to {} repeat with period 2 "
+                                "(a cycle without state changes)",
+                                iteration - 3, iteration));
+    }
     if (iteration == 1) {
       norms.firstResidual = step.referenceResidual > 0 ? step.referenceResidual : norms.residual;
       if (step.predictedIncrement && step.referenceResidual == 0) {

@@ -172,5 +172,29 @@ TEST(AugmentedLagrangian, AStiffPenaltyConvergesToRoundoffAndMatchesTheConstrain
   EXPECT_LE(shortfall, deepest / 4e-3);
 }
 
+// Plain Newton at 100 times the automatic penalty alternates in the press between two iterates
+// whose residual norms repeat (0.267, 0.294, 0.267, ... of the first; no point changes state,
+// so the active-set cycle test does not see it). It used to spin all 30 iterations before the
+// line-search retry; the retry now starts once two periods repeat (newton.cpp, residualCycles).
+TEST(AugmentedLagrangian, APeriodTwoResidualCycleGoesToTheLineSearchAtOnce) {
+  const DeckRun stiff = runSmallBlock("enforcement=penalty eps_scale=100");
+  ASSERT_EQ(stiff.summary.outcome, RunSummary::Outcome::Completed);
+  ASSERT_FALSE(stiff.cutbacks.empty());
+  const CutbackRecord& first = stiff.cutbacks.front();
+  EXPECT_EQ(first.step, 1);
+  EXPECT_NE(first.reason.find("repeat with period 2"), std::string::npos) << first.reason;
+  std::vector<double> plain;  // relative residuals of the press's first (plain) attempt
+  for (const IterationRecord& row : stiff.iterationsOf(1)) {
+    if (row.attempt == 0) plain.push_back(row.relativeResidual);
+  }
+  ASSERT_GE(plain.size(), 4u);
+  EXPECT_LT(plain.size(), 20u);  // before: 30 iterations
+  const std::size_t k = plain.size() - 1;
+  EXPECT_LE(std::abs(plain[k] - plain[k - 2]), 1e-3 * plain[k]);
+  EXPECT_GT(std::abs(plain[k] - plain[k - 1]), 1e-2 * plain[k]);  // two iterates, not a stall
+  EXPECT_GT(plain[k], 1e-3);                                      // far from convergence
+  EXPECT_LT(stiff.summary.discardedIterations, 120);              // before: 4 retries after 30 each
+}
+
 }  // namespace
 }  // namespace cc::test
