@@ -21,6 +21,7 @@
 // receives the whole solution (VecScatterCreateToAll), so that Newton goes on identically on
 // every process.
 #include <fmt/format.h>
+#include <omp.h>
 #include <petscksp.h>
 
 #include <Eigen/SparseCore>
@@ -39,6 +40,25 @@ namespace cc {
 
 namespace {
 
+// SuperLU_dist 8.1 as Debian builds it parallelizes its factorization with OpenMP, and that
+// path races: on the 5 x 5 x 5 lattice of test_petsc_solver.cpp 2 of 25 factorizations with
+// two threads had a relative residual of 0.16-0.21 (0 of 25 with one thread). Its set-up and
+// solves therefore run with one OpenMP thread.
+class OneOpenMpThread {
+ public:
+  explicit OneOpenMpThread(bool active) : saved_(active ? omp_get_max_threads() : 0) {
+    if (saved_ > 0) omp_set_num_threads(1);
+  }
+  ~OneOpenMpThread() {
+    if (saved_ > 0) omp_set_num_threads(saved_);
+  }
+  OneOpenMpThread(const OneOpenMpThread&) = delete;
+  OneOpenMpThread& operator=(const OneOpenMpThread&) = delete;
+
+ private:
+  int saved_;
+};
+
 void check(PetscErrorCode code, const char* what) {
   if (code != 0) throw std::runtime_error(fmt::format("PETSc: {} failed (error {})", what, code));
 }
@@ -47,6 +67,16 @@ void check(PetscErrorCode code, const char* what) {
 // BoomerAMG-GMRES needs 10-40 on the tangents measured (docs/performance/solvers.md).
 constexpr PetscInt kMaxKrylovIterations = 400;
 constexpr PetscInt kGmresRestart = 100;
+// A lagged AMG hierarchy: the set-up (aggregation, smoothed prolongation, Galerkin products) is
+// half of the linear solver's time (GAMG, 57 k scaling deck on 2 processes: 7.0 s of 13.4 s),
+// while one hierarchy preconditions the tangents of several Newton iterations nearly as well
+// (GMRES then sees the current matrix; only the preconditioner is older, so every solve still
+// reaches its forcing tolerance and Newton's iterations are unchanged). The hierarchy is rebuilt
+// when a solve's convergence rate, -log10(achieved relative residual) per Krylov iteration,
+// falls below kLaggedRateRatio times the rate of the first solve after the last rebuild (a
+// rate, not an iteration count: Newton's forcing term asks for 1e-3 in one solve and 1e-10 a
+// few later), after a stalled solve, and with every new pattern.
+constexpr double kLaggedRateRatio = 0.7;
 // Relative residual above which a direct solve counts as failed (round-off of a backward-stable
 // LU is ~1e-15 on our tangents; SuperLU_dist's static pivoting can miss by far more).
 constexpr double kDirectResidual = 1e-8;
@@ -114,7 +144,12 @@ class PetscSolver final : public LinearSolver {
     ++statistics_.factorizations;
     factored_ = false;
     setValues(matrix);
-    if (iterative()) setNearNullSpace();
+    const bool reuseHierarchy = iterative() && hierarchyBuilt_ && !rebuildHierarchy_;
+    if (iterative()) {
+      setNearNullSpace();
+      check(KSPSetReusePreconditioner(ksp_, reuseHierarchy ? PETSC_TRUE : PETSC_FALSE),
+            "KSPSetReusePreconditioner");
+    }
     // MUMPS sizes its work arrays from the analysis's estimate plus ICNTL(14) per cent; pivoting
     // can need more than that (INFOG(1) = -8, -9, -11 .. -15). Then the factorization is redone
     // with twice the margin, as MUMPS's manual advises, up to kMaxMumpsMargin per cent.
@@ -134,6 +169,15 @@ class PetscSolver final : public LinearSolver {
     }
     statistics_.factorizationSeconds += secondsSince(start);
     factored_ = true;
+    if (iterative()) {
+      if (reuseHierarchy) {
+        ++statistics_.reusedPreconditioners;
+      } else {
+        hierarchyBuilt_ = true;
+        rebuildHierarchy_ = false;
+        rateAfterRebuild_ = -1;  // measured by the next solve
+      }
+    }
   }
 
   Eigen::VectorXd solve(const Eigen::VectorXd& rhs) override {
@@ -151,7 +195,10 @@ class PetscSolver final : public LinearSolver {
       check(KSPSetTolerances(ksp_, relativeTolerance_, 0.0, 1e5, maxIterations_),
             "KSPSetTolerances");
     }
-    check(KSPSolve(ksp_, rhs_, solution_), "KSPSolve");
+    {
+      const OneOpenMpThread oneThread(method_ == PetscMethod::SuperluDist);
+      check(KSPSolve(ksp_, rhs_, solution_), "KSPSolve");
+    }
     KSPConvergedReason reason = KSP_CONVERGED_ITERATING;
     check(KSPGetConvergedReason(ksp_, &reason), "KSPGetConvergedReason");
     PetscInt iterations = 0;
@@ -165,6 +212,7 @@ class PetscSolver final : public LinearSolver {
     // A direct solve whose residual is far above round-off did not solve the system.
     if (!iterative() && !(last_.relativeResidual <= kDirectResidual))
       reason = KSP_DIVERGED_BREAKDOWN;
+    if (iterative()) judgeHierarchy(reason, iterations);
     if (reason < 0) {
       throw KrylovFailure(fmt::format(
           "{}: {} after {} iterations (relative residual {:.3g}, "
@@ -198,9 +246,26 @@ class PetscSolver final : public LinearSolver {
       createSolverSettings();
     }
     factored_ = false;
+    hierarchyBuilt_ = false;
   }
 
  private:
+  // Whether the next factorize() rebuilds the AMG hierarchy (kLaggedRateRatio). The same
+  // decision on every process: the iteration count and residual are global.
+  void judgeHierarchy(KSPConvergedReason reason, PetscInt iterations) {
+    if (reason < 0) {
+      rebuildHierarchy_ = true;
+      return;
+    }
+    if (iterations <= 0 || !(last_.relativeResidual > 0)) return;
+    const double rate = -std::log10(last_.relativeResidual) / static_cast<double>(iterations);
+    if (rateAfterRebuild_ < 0) {
+      rateAfterRebuild_ = rate;
+    } else if (rate < kLaggedRateRatio * rateAfterRebuild_) {
+      rebuildHierarchy_ = true;
+    }
+  }
+
   enum class FactorOutcome { Done, WorkspaceTooSmall };
 
   // One numeric factorization (direct) or AMG set-up (iterative) of the values set. Throws
@@ -221,6 +286,7 @@ class PetscSolver final : public LinearSolver {
       check(MatMumpsSetCntl(factor_, 3, kSingularPivotRatio), "MatMumpsSetCntl");
     }
     // Direct: the analysis and numeric factorization; iterative: the AMG hierarchy.
+    const OneOpenMpThread oneThread(method_ == PetscMethod::SuperluDist);
     const PetscErrorCode code = KSPSetUp(ksp_);
     if (code == PETSC_ERR_MEM) {
       throw OutOfMemory(fmt::format(
@@ -640,6 +706,7 @@ class PetscSolver final : public LinearSolver {
     if (toAll_) VecScatterDestroy(&toAll_);
     if (all_) VecDestroy(&all_);
     factored_ = false;
+    hierarchyBuilt_ = false;
   }
 
   PetscMethod method_;
@@ -647,6 +714,8 @@ class PetscSolver final : public LinearSolver {
   PetscInt maxIterations_ = kMaxKrylovIterations;
   SystemLayout layout_;
   KrylovReport last_;
+  bool hierarchyBuilt_ = false, rebuildHierarchy_ = false;
+  double rateAfterRebuild_ = -1;  // decades per Krylov iteration; negative: not measured yet
   Eigen::Index equations_ = 0, nonZeros_ = 0;
   bool embedded_ = false;
   PetscInt size_ = 0;

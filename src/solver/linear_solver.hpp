@@ -35,6 +35,8 @@ struct LinearSolverStatistics {
   // diverged and were redone with a direct solver (TangentSolver's fallback).
   long krylovIterations = 0;
   int krylovFallbacks = 0;
+  // Iterative backends: factorize() calls that kept the last AMG hierarchy (petsc_solver.cpp).
+  int reusedPreconditioners = 0;
   // Several processes: bytes this process sent for matrix entries of rows another process
   // owns, and received of the solution (the direct solver's own traffic is not counted).
   double matrixBytesSent = 0;

@@ -23,6 +23,7 @@ LinearSolverStatistics& LinearSolverStatistics::operator+=(const LinearSolverSta
   largestFactorFlops = std::max(largestFactorFlops, other.largestFactorFlops);
   krylovIterations += other.krylovIterations;
   krylovFallbacks += other.krylovFallbacks;
+  reusedPreconditioners += other.reusedPreconditioners;
   matrixBytesSent += other.matrixBytesSent;
   solutionBytesReceived += other.solutionBytesReceived;
   return *this;

@@ -162,6 +162,38 @@ TEST(PetscSolver, RepeatedFactorizationsOfOnePatternReuseTheAnalysis) {
   EXPECT_EQ(solver.activeBackend(), "MUMPS");
 }
 
+// The lagged AMG hierarchy (petsc_solver.cpp, kLaggedRateRatio): a slightly changed matrix is
+// solved with the last hierarchy, to the tolerance of the new matrix; a stalled solve makes the
+// next factorization rebuild it.
+TEST(PetscSolver, GamgKeepsItsHierarchyWhileItConvergesAndRebuildsAfterAStall) {
+  const Lattice model = lattice(6, 0.3);
+  const Eigen::VectorXd rhs = rightHandSide(model.system.free.rows());
+  const double rtol = 1e-9;
+  auto solver = makePetscSolver(PetscMethod::Gamg);
+  solver->setLayout(model.layout);
+  solver->setRelativeTolerance(rtol);
+  solver->analyzePattern(model.system.free);
+  solver->factorize(model.system.free);
+  solver->solve(rhs);
+  EXPECT_EQ(solver->statistics().reusedPreconditioners, 0);
+  const SparseMatrix changed = 1.02 * model.system.free;
+  solver->factorize(changed);
+  EXPECT_EQ(solver->statistics().reusedPreconditioners, 1);
+  const Eigen::VectorXd x = solver->solve(rhs);
+  // GMRES works on the new matrix: its own residual, not the old one's, meets the tolerance.
+  EXPECT_LE((changed * x - rhs).norm() / rhs.norm(), rtol);
+  EXPECT_GT((model.system.free * x - rhs).norm() / rhs.norm(), 1e-3);
+  solver->setIterationLimit(1);  // one GMRES iteration cannot reach 1e-9: a stall
+  solver->factorize(model.system.free);
+  EXPECT_EQ(solver->statistics().reusedPreconditioners, 2);
+  EXPECT_THROW(solver->solve(rhs), KrylovFailure);
+  solver->setIterationLimit(400);
+  solver->factorize(model.system.free);
+  EXPECT_EQ(solver->statistics().reusedPreconditioners, 2);  // rebuilt
+  const Eigen::VectorXd y = solver->solve(rhs);
+  EXPECT_LE((model.system.free * y - rhs).norm() / rhs.norm(), rtol);
+}
+
 TEST(PetscSolver, StalledKrylovSolveFallsBackToTheDirectSolverAndSaysSo) {
   const Lattice model = lattice(5);
   const Eigen::VectorXd rhs = rightHandSide(model.system.free.rows());
