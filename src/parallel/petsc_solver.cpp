@@ -75,7 +75,9 @@ constexpr PetscInt kGmresRestart = 100;
 // when a solve's convergence rate, -log10(achieved relative residual) per Krylov iteration,
 // falls below kLaggedRateRatio times the rate of the first solve after the last rebuild (a
 // rate, not an iteration count: Newton's forcing term asks for 1e-3 in one solve and 1e-10 a
-// few later), after a stalled solve, and with every new pattern.
+// few later), after a stalled solve, and with every new pattern. The PETSc option
+// -cc_hierarchy_rate_ratio overrides the ratio (1 or more: a new hierarchy for every tangent, as
+// before; for benchmarks).
 constexpr double kLaggedRateRatio = 0.7;
 // Relative residual above which a direct solve counts as failed (round-off of a backward-stable
 // LU is ~1e-15 on our tangents; SuperLU_dist's static pivoting can miss by far more).
@@ -250,6 +252,14 @@ class PetscSolver final : public LinearSolver {
   }
 
  private:
+  static double laggedRateRatio() {
+    PetscReal ratio = kLaggedRateRatio;
+    PetscBool given = PETSC_FALSE;
+    check(PetscOptionsGetReal(nullptr, nullptr, "-cc_hierarchy_rate_ratio", &ratio, &given),
+          "PetscOptionsGetReal");
+    return ratio;
+  }
+
   // Whether the next factorize() rebuilds the AMG hierarchy (kLaggedRateRatio). The same
   // decision on every process: the iteration count and residual are global.
   void judgeHierarchy(KSPConvergedReason reason, PetscInt iterations) {
@@ -257,11 +267,16 @@ class PetscSolver final : public LinearSolver {
       rebuildHierarchy_ = true;
       return;
     }
+    const double ratio = laggedRateRatio();
+    if (ratio >= 1) {
+      rebuildHierarchy_ = true;  // no lag
+      return;
+    }
     if (iterations <= 0 || !(last_.relativeResidual > 0)) return;
     const double rate = -std::log10(last_.relativeResidual) / static_cast<double>(iterations);
     if (rateAfterRebuild_ < 0) {
       rateAfterRebuild_ = rate;
-    } else if (rate < kLaggedRateRatio * rateAfterRebuild_) {
+    } else if (rate < ratio * rateAfterRebuild_) {
       rebuildHierarchy_ = true;
     }
   }
