@@ -96,12 +96,21 @@ bool convergedAfterSolve(const NewtonSpec& spec, const Norms& norms, int iterati
 // line search does: the step fails at once and the load stepper retries it with the line search
 // (before, the retry came after maxIterations failed iterations). The retry is the same solve as
 // before, so its iteration count is too; a step that never revisits a set is untouched.
-// The same without any state change: plain Newton alternating between two iterates whose
-// residual norms repeat (the slip direction of stiffly penalized points flipping back and
-// forth; issue 16: 0.267, 0.294, 0.267, ... of the first residual for 30 iterations in a press
-// at 100 times the automatic penalty). Two periods of norms equal to kCycleNormMatch, checked
-// only while the residual is above kCycleCheckAbove of the first (far from the round-off floor
-// and from the small non-smooth stagnations near convergence, which a retry would not help).
+bool enteredCycle(std::vector<std::uint64_t>& activeSets, const ContactChanges& changes) {
+  const bool changed = changes.state > 0 || changes.segment > 0;
+  const bool seen = changed && std::find(activeSets.begin(), activeSets.end(), changes.signature) !=
+                                   activeSets.end();
+  activeSets.push_back(changes.signature);
+  return seen;
+}
+
+// A cycle without any state change: plain Newton alternating between two iterates (or stuck
+// at one) whose residual norms repeat (the slip direction of stiffly penalized points flipping
+// back and forth; issue 16: 0.267, 0.294, 0.267, ... of the first residual for 30 iterations
+// in a press at 100 times the automatic penalty). Two periods of norms equal to
+// kCycleNormMatch, checked only while the residual is above kCycleCheckAbove of the first (far
+// from the round-off floor and from the small non-smooth stagnations near convergence, which a
+// retry would not help).
 inline constexpr double kCycleNormMatch = 1e-3;
 inline constexpr double kCycleCheckAbove = 1e-3;
 bool residualCycles(const std::vector<double>& norms) {
@@ -111,14 +120,6 @@ bool residualCycles(const std::vector<double>& norms) {
     return std::abs(norms[i] - norms[i - 2]) <= kCycleNormMatch * norms[i];
   };
   return repeats(k - 1) && repeats(k - 2);
-}
-
-bool enteredCycle(std::vector<std::uint64_t>& activeSets, const ContactChanges& changes) {
-  const bool changed = changes.state > 0 || changes.segment > 0;
-  const bool seen = changed && std::find(activeSets.begin(), activeSets.end(), changes.signature) !=
-                                   activeSets.end();
-  activeSets.push_back(changes.signature);
-  return seen;
 }
 
 }  // namespace
