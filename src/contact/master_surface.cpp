@@ -289,7 +289,7 @@ SegmentProjection MasterSurface::search(const Eigen::Vector3d& point,
   const auto cell = cells_.find(cellKey(cellOf(point)));
   if (cell == cells_.end()) return best;
   // Projections in the order of their distance bounds, stopping once the bound exceeds the
-  // best accepted distance: a cell of a thin mesh holds 100-150 segments, and projecting onto
+  // best accepted distance: a cell of a thin mesh holds 230-280 segments, and projecting onto
   // each made the first search 40x a slide search (docs/performance/README.md, "Contact
   // search"). Ties go to the lower segment index, the choice of a scan in index order, so the
   // result is the exhaustive scan's.
