@@ -11,7 +11,6 @@
 #include <cassert>
 #include <chrono>
 #include <cmath>
-#include <ctime>
 #include <exception>
 #include <optional>
 #include <string>
@@ -42,12 +41,6 @@ constexpr std::size_t kDefaultMinItemsForThreads = 2048;
 // yet measured, counts items. Serial and parallel evaluation add in the same order (by color),
 // so the choice never changes a result.
 constexpr double kReferenceItemCpuSeconds = 6e-6;
-
-double threadCpuSeconds() {
-  timespec now{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
-  return static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec);
-}
 
 // Pattern versions are unique in the process so that a solver keyed on a version never
 // confuses patterns of two assemblers.

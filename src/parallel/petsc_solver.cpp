@@ -252,14 +252,6 @@ class PetscSolver final : public LinearSolver {
   }
 
  private:
-  static double laggedRateRatio() {
-    PetscReal ratio = kLaggedRateRatio;
-    PetscBool given = PETSC_FALSE;
-    check(PetscOptionsGetReal(nullptr, nullptr, "-cc_hierarchy_rate_ratio", &ratio, &given),
-          "PetscOptionsGetReal");
-    return ratio;
-  }
-
   // Whether the next factorize() rebuilds the AMG hierarchy (kLaggedRateRatio). The same
   // decision on every process: the iteration count and residual are global.
   void judgeHierarchy(KSPConvergedReason reason, PetscInt iterations) {
@@ -267,7 +259,7 @@ class PetscSolver final : public LinearSolver {
       rebuildHierarchy_ = true;
       return;
     }
-    const double ratio = laggedRateRatio();
+    const double ratio = laggedRateRatio_;
     if (ratio >= 1) {
       rebuildHierarchy_ = true;  // no lag
       return;
@@ -549,6 +541,10 @@ class PetscSolver final : public LinearSolver {
   }
 
   void createSolver() {
+    PetscBool given = PETSC_FALSE;
+    check(PetscOptionsGetReal(nullptr, nullptr, "-cc_hierarchy_rate_ratio", &laggedRateRatio_,
+                              &given),
+          "PetscOptionsGetReal");
     check(KSPCreate(PETSC_COMM_WORLD, &ksp_), "KSPCreate");
     createSolverSettings();
   }
@@ -731,6 +727,7 @@ class PetscSolver final : public LinearSolver {
   KrylovReport last_;
   bool hierarchyBuilt_ = false, rebuildHierarchy_ = false;
   double rateAfterRebuild_ = -1;  // decades per Krylov iteration; negative: not measured yet
+  PetscReal laggedRateRatio_ = kLaggedRateRatio;  // or -cc_hierarchy_rate_ratio
   Eigen::Index equations_ = 0, nonZeros_ = 0;
   bool embedded_ = false;
   PetscInt size_ = 0;

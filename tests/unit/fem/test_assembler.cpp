@@ -7,10 +7,10 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
-#include <ctime>
 #include <limits>
 #include <set>
 
+#include "common/stopwatch.hpp"
 #include "fem/assembler.hpp"
 #include "fem/coloring.hpp"
 #include "grid_springs.hpp"
@@ -351,11 +351,6 @@ class CostlyGridSprings : public GridSprings {
   std::atomic<bool> ranInParallel = false;
 
  private:
-  static double threadCpuSeconds() {
-    timespec now{};
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
-    return static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec);
-  }
   double itemCpuSeconds_;
 };
 
