@@ -334,9 +334,10 @@ NewtonResult Newton::solve(const NewtonStep& step, const NewtonSpec& spec,
     // A stiff penalty makes forces of eps g whose round-off, eps_N times that of the coordinates,
     // dwarfs the round-off of the internal force itself: at 100 times the automatic penalty the
     // residual stalled at 3e-10 of its first value and Newton spun 30 iterations there. Checked
-    // only near convergence: the estimate sums the tangent's diagonal over processes.
-    if (!atRoundoff && !residualMet && iteration > 1 &&
-        norms.relativeResidual() < kRoundoffCheckBelow) {
+    // at any relative residual: in the small steps of a cut-back the first residual is small
+    // too, and at 1e4 times the automatic penalty the floor lay at 2e-5 of it (a gate at 1e-6
+    // failed the step after 10 cut-backs).
+    if (!atRoundoff && !residualMet && iteration > 1) {
       atRoundoff = norms.residual <= kRoundoffStiffness * stiffnessForceScale();
     }
     if (iteration > 1 && usesResidual(spec.criterion) && (residualMet || atRoundoff)) {

@@ -41,10 +41,8 @@ namespace cc {
 inline constexpr double kRoundoffResidual = 1e3 * 2.220446049250313e-16;
 // ||rhs|| below this multiple of max|K_ii| max|x| is round-off too: a force computed from
 // coordinates x carries errors of machine epsilon |x| times the stiffness that makes it (a
-// lower bound: each dof sums several such terms). Looked at only once the relative residual
-// is below kRoundoffCheckBelow.
+// lower bound: each dof sums several such terms).
 inline constexpr double kRoundoffStiffness = 10 * 2.220446049250313e-16;
-inline constexpr double kRoundoffCheckBelow = 1e-6;
 
 // Line search (NewtonSpec::lineSearch): backtracking with the Armijo test on the residual norm,
 // the merit function that suits a tangent that is neither symmetric nor smooth (frictional
