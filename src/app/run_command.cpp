@@ -500,15 +500,20 @@ int runCommand(const RunOptions& options) {
   writer.close({outcomeName(summary.outcome), summary.stepsConverged, summary.totalIterations,
                 summary.totalCutbacks, rankZeroValue(group, seconds), summary.message,
                 observer.linearSolver(), work.linear.krylovIterations, work.linear.krylovFallbacks,
-                summary.lineSearchRetries, summary.discardedIterations});
+                summary.lineSearchRetries, summary.discardedIterations,
+                summary.continuationRetries});
   if (!writes) return exitCodeOf(summary.outcome);
   if (summary.outcome == RunSummary::Outcome::Completed) {
     // The work of failed attempts (retried with line search or cut back) is not in the
     // iterations of the converged steps; it is said separately.
+    const std::string continued =
+        summary.continuationRetries > 0
+            ? fmt::format(", {} by penalty continuation", summary.continuationRetries)
+            : std::string();
     const std::string discarded =
         summary.discardedIterations > 0
-            ? fmt::format(" (+{} in failed attempts, {} retried with line search)",
-                          summary.discardedIterations, summary.lineSearchRetries)
+            ? fmt::format(" (+{} in failed attempts, {} retried with line search{})",
+                          summary.discardedIterations, summary.lineSearchRetries, continued)
             : std::string();
     printOut(fmt::format(
         "completed: {} steps, {} Newton iterations{}, {} cut-backs in {:.2f} s; results in {}\n",

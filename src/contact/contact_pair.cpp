@@ -19,6 +19,8 @@ constexpr double kSymmetryTolerance = 1e-12;
 ContactPair::ContactPair(ContactPairConfig config, const FaceSet& master,
                          std::vector<PairPoint> points)
     : config_(std::move(config)),
+      builtPenaltyNormal_(config_.law.penaltyNormal),
+      builtPenaltyTangential_(config_.law.penaltyTangential),
       tracker_(master),
       points_(std::move(points)),
       accelerator_(config_.accelerationDepth) {
@@ -341,6 +343,16 @@ ContactPairRecord ContactPair::record() const {
   r.dissipation = stepDissipation_;
   r.dissipatedEnergy = dissipatedEnergy_;
   return r;
+}
+
+double ContactPair::penaltyRatio() const {
+  if (!(config_.referencePenalty > 0)) return 0;
+  return std::max(builtPenaltyNormal_, builtPenaltyTangential_) / config_.referencePenalty;
+}
+
+void ContactPair::scalePenalties(double factor) {
+  config_.law.penaltyNormal = factor * builtPenaltyNormal_;
+  config_.law.penaltyTangential = factor * builtPenaltyTangential_;
 }
 
 }  // namespace cc::contact

@@ -101,6 +101,12 @@ class ContactPair : public Contribution {
   const std::string& augmentationMessage() const { return lastAugmentationMessage_; }
   int augmentations() const { return augmentations_; }
 
+  // Penalty continuation (solver/load_stepper.cpp): the larger of the pair's penalties over its
+  // automatic penalty (0: unknown), and a factor on the penalties it was built with, for the
+  // solves of a step that approach a stiff penalty from the automatic one (1 restores them).
+  double penaltyRatio() const;
+  void scalePenalties(double factor);
+
   // Energy (contact_pair_energy.cpp): the stored penalty energy of the last evaluated state, and
   // the frictional dissipation of the last committed step and since the start of the run.
   double penaltyEnergy() const;
@@ -148,6 +154,7 @@ class ContactPair : public Contribution {
   void inheritHistory(PairPoint& point, const Eigen::Matrix3Xd& x) const;
 
   ContactPairConfig config_;
+  double builtPenaltyNormal_ = 0, builtPenaltyTangential_ = 0;  // before scalePenalties
   SegmentTracker tracker_;
   std::vector<PairPoint> points_;
   // What takeChanges() saw last, per point.

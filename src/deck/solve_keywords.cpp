@@ -80,7 +80,12 @@ std::vector<ValueDecl> newtonParameters() {
           enumValue("predictor", choiceNames(newtonPredictors()),
                     "first iterate of a step: the converged state with the prescribed increment "
                     "(prescribed), or plus the last step's increment scaled to dt (extrapolate)")
-              .withDefault(predictorName(defaults.predictor))};
+              .withDefault(predictorName(defaults.predictor)),
+          boolValue("penalty_continuation",
+                    "a step that fails with and without line search at a contact penalty more "
+                    "than 100 times its automatic value is retried by solves at penalties growing "
+                    "10-fold from the automatic one")
+              .withDefault(defaultText(defaults.penaltyContinuation))};
 }
 
 std::vector<ValueDecl> cutbackParameters() {
@@ -126,6 +131,9 @@ void applyNewtonParameters(const ParsedLine& line, NewtonSpec& newton) {
   if (use("line_search")) newton.lineSearch = line.flag("line_search");
   if (use("predictor")) {
     newton.predictor = choiceValue(newtonPredictors(), line.text("predictor"));
+  }
+  if (use("penalty_continuation")) {
+    newton.penaltyContinuation = line.flag("penalty_continuation");
   }
 }
 

@@ -1,6 +1,8 @@
 // Model: the NonlinearProblem the solver works on, and the step records for output.
 #include "model/model.hpp"
 
+#include <algorithm>
+
 namespace cc {
 
 Model::~Model() = default;
@@ -76,6 +78,16 @@ NonlinearProblem::Augmentation Model::augment() {
     }
   }
   return result;
+}
+
+double Model::stiffestPenaltyRatio() const {
+  double ratio = 0;
+  for (const auto& pair : contactPairs_) ratio = std::max(ratio, pair->penaltyRatio());
+  return ratio;
+}
+
+void Model::scalePenalties(double factor) {
+  for (auto& pair : contactPairs_) pair->scalePenalties(factor);
 }
 
 void Model::commitStep() {

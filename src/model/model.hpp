@@ -35,6 +35,8 @@ class Model : public NonlinearProblem {
   void assemble(const AssemblyState& state, Eigen::VectorXd& internalForce,
                 SystemMatrices* tangent) override;
   Augmentation augment() override;
+  double stiffestPenaltyRatio() const override;
+  void scalePenalties(double factor) override;
   void commitStep() override;
   void restoreStep() override;
   // Connected groups of elements, each named after its element blocks (model_state.cpp).

@@ -215,15 +215,15 @@ void setAutomaticPenalty(const ContactSpec& spec, const Mesh& mesh,
                          contact::ContactPairConfig& config) {
   const bool normal = spec.penaltyNormal == 0;
   const bool tangential = spec.friction > 0 && spec.penaltyTangential == 0;
-  if (!normal && !tangential && !config.augmented) return;
   double stiffness = surfaceStiffness(mesh, mesh.faceSets.at(spec.master), blockYoung);
   if (spec.kind != ContactSpec::Kind::SegmentToAnalytical) {
     stiffness =
         std::min(stiffness, surfaceStiffness(mesh, mesh.faceSets.at(spec.slave), blockYoung));
   }
   const bool known = std::isfinite(stiffness) && stiffness > 0;
-  // The augmented Lagrangian's stopping rule measures penetration against the automatic
-  // penalty's whatever eps the deck gives (contact_pair_augmentation.cpp); unknown: 0.
+  // Known for every pair, whatever eps the deck gives (unknown: 0): the augmented Lagrangian's
+  // stopping rule measures penetration against it (contact_pair_augmentation.cpp), and a penalty
+  // far above it is approached by continuation within each step (solver/load_stepper.cpp).
   config.referencePenalty = known ? kAutomaticPenaltyFactor * stiffness : 0.0;
   if (!normal && !tangential) return;
   if (!known) {

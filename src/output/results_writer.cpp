@@ -439,6 +439,7 @@ void ResultsWriter::close(const RunTotals& totals) {
     h5::writeAttribute(file, summary.get(), "cutbacks", totals.cutbacks);
     h5::writeAttribute(file, summary.get(), "line_search_retries", totals.lineSearchRetries);
     h5::writeAttribute(file, summary.get(), "discarded_iterations", totals.discardedIterations);
+    h5::writeAttribute(file, summary.get(), "continuation_retries", totals.continuationRetries);
     h5::writeAttribute(file, summary.get(), "wall_seconds", totals.wallSeconds);
     h5::writeAttribute(file, summary.get(), "message", totals.message);
     h5::writeAttribute(file, summary.get(), "linear_solver", totals.linearSolver);

@@ -42,6 +42,7 @@ struct RunTotals {
   int krylovFallbacks = 0;
   int lineSearchRetries = 0;    // failed plain-Newton attempts retried with line search
   int discardedIterations = 0;  // iterations of failed attempts (not in totalIterations)
+  int continuationRetries = 0;  // steps retried by penalty continuation after line search
 };
 
 // <dir>/<stem>.xdmf and <dir>/<stem>_reactions.csv beside <dir>/<stem>.h5.

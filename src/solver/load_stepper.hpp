@@ -28,6 +28,9 @@ struct RunSummary {
   // of every failed attempt (retried or cut back): work done that is not in totalIterations.
   int lineSearchRetries = 0;
   int discardedIterations = 0;
+  // Steps of a stiff penalty retried by penalty continuation after their line-search retry
+  // failed (load_stepper.cpp).
+  int continuationRetries = 0;
   double finalTime = 0;
   std::string message;  // why the run stopped, if it did not complete
 };
@@ -76,6 +79,10 @@ class LoadStepper {
   // NewtonSpec::Predictor::Extrapolate: the increment of the step to targetTime (null: none).
   const Eigen::VectorXd* predictedIncrement(const PhaseSpec& phase, double targetTime,
                                             PhaseRun& run) const;
+  // A step solved at contact penalties growing from the automatic ones to the deck's
+  // (load_stepper.cpp): the retry of a stiff penalty's failed step before it is cut back.
+  NewtonResult solveByPenaltyContinuation(const NewtonSpec& spec, const NewtonStep& step,
+                                          PhaseRun& run);
   // Re-solves a converged step while the problem updates contact multipliers.
   NewtonResult augmentStep(const PhaseSpec& phase, const NewtonStep& step, NewtonResult result,
                            PhaseRun& run);

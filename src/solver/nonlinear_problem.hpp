@@ -40,6 +40,11 @@ class NonlinearProblem {
     std::string message;
   };
   virtual Augmentation augment() { return {}; }
+  // Penalty continuation (load_stepper.cpp): the largest ratio of a contact pair's penalty to
+  // its automatic penalty (0: no contact pair, or none with an automatic penalty known), and a
+  // factor on every pair's penalties (1: as built).
+  virtual double stiffestPenaltyRatio() const { return 0; }
+  virtual void scalePenalties(double /*factor*/) {}
   virtual void commitStep() = 0;   // the step converged: keep its history
   virtual void restoreStep() = 0;  // the step is cut back: forget the attempt
   // The bodies, for naming the rigid-body motions a singular tangent leaves free

@@ -161,6 +161,10 @@ struct NewtonSpec {
   // increment), on every dof; what the prescribed values still differ by enters linearly.
   enum class Predictor { Prescribed, Extrapolate };
   Predictor predictor = Predictor::Prescribed;
+  // A step that fails with and without line search at a contact penalty far above its
+  // automatic value is retried by solves at growing penalties, starting from the automatic one
+  // (solver/load_stepper.cpp).
+  bool penaltyContinuation = true;
 };
 
 // The linear solver of the Newton systems (deck: `solve solver=...`, issue 13). Auto keeps the

@@ -52,7 +52,7 @@ TEST(AutomaticPenalty, IsTenTimesEOverHOnExample61) {
 
 // The small block of the tests below: pressed onto an elastic base (4e-3), then dragged by
 // 4e-3 in 4 steps; `options` completes the contact line (enforcement, eps_scale, ...).
-DeckRun runSmallBlock(const std::string& options) {
+DeckRun runSmallBlock(const std::string& options, const std::string& newtonOptions = "") {
   const std::string path = kSourceDir + "/input/verification/contact/inline.deck";
   const std::string text = R"deck(
 mesh "../../../meshes/block_on_base.geo" nx=4 ny=2 nz=1 nbx=5 nby=1 blockLength=2 blockHeight=1 baseLength=2.5 baseHeight=0.5 thickness=0.5
@@ -68,7 +68,8 @@ prescribe block_top uy "-4e-3*min(t,1)" ux "1e-3*max(t-1,0)"
 contact sts master=block_bottom slave=base_top mu=0.3 )deck" +
                            options + R"deck( name=interface
 solve
-  newton converge=residual residual=1e-10
+  newton converge=residual residual=1e-10 )deck" +
+                           newtonOptions + R"deck(
   steps 1 dt=1
   steps 4 dt=1
 end
@@ -194,6 +195,36 @@ TEST(AugmentedLagrangian, APeriodTwoResidualCycleGoesToTheLineSearchAtOnce) {
   EXPECT_GT(std::abs(plain[k] - plain[k - 1]), 1e-2 * plain[k]);  // two iterates, not a stall
   EXPECT_GT(plain[k], 1e-3);                                      // far from convergence
   EXPECT_LT(stiff.summary.discardedIterations, 120);              // before: 4 retries after 30 each
+}
+
+// A penalty 1e4 times the automatic one (eps = 4.2e9 against E = 2.1e4): Newton's region of
+// convergence shrinks like 1 / eps, and the press failed at every step size, with and without
+// line search (the points at the edge of the contact zone switched open/closed). The retry by
+// penalty continuation (load_stepper.cpp) approaches the step from the automatic penalty. Both
+// enforcements then complete. Independent check: the penalty's force converges to the
+// constraint's like 1 / eps, so its Richardson extrapolation from 1e3 and 1e4 times eps_ref,
+// F4 + (F4 - F3) / 9, is the constraint's force, which the augmented run at 1e4 must give
+// within the augmentation's bound of the two-decade test above (measured: 71.370263 against
+// 71.370264). Without continuation the penalty run fails.
+TEST(AugmentedLagrangian, PenaltyContinuationCompletesTheFourthDecadeAboveTheAutomaticPenalty) {
+  const DeckRun reference = runSmallBlock("enforcement=penalty");
+  const DeckRun penalty3 = runSmallBlock("enforcement=penalty eps_scale=1e3");
+  const DeckRun penalty4 = runSmallBlock("enforcement=penalty eps_scale=1e4");
+  const DeckRun augmented4 = runSmallBlock("enforcement=augmented eps_scale=1e4");
+  const DeckRun without =
+      runSmallBlock("enforcement=penalty eps_scale=1e4", "penalty_continuation=no");
+  for (const DeckRun* run : {&reference, &penalty3, &penalty4, &augmented4})
+    ASSERT_EQ(run->summary.outcome, RunSummary::Outcome::Completed);
+  EXPECT_GE(penalty4.summary.continuationRetries, 1);
+  EXPECT_GE(augmented4.summary.continuationRetries, 1);
+  EXPECT_EQ(without.summary.outcome, RunSummary::Outcome::Diverged);
+  EXPECT_TRUE(without.steps.empty());  // it failed in the press
+  const double f3 = pressForce(penalty3), f4 = pressForce(penalty4);
+  ASSERT_GT(f4, f3);
+  const double extrapolated = f4 + (f4 - f3) / 9;
+  const double penaltyError = 1 - pressForce(reference) / extrapolated;
+  const double bound = 2 * 1e-3 * penaltyError;
+  EXPECT_LE(std::abs(pressForce(augmented4) / extrapolated - 1), bound);
 }
 
 }  // namespace
