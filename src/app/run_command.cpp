@@ -372,6 +372,16 @@ int runCommand(const RunOptions& options) {
         printOut(fmt::format("contact '{}': automatic penalty eps_n = {:.6g}, eps_t = {:.6g}\n",
                              config.name, config.law.penaltyNormal, config.law.penaltyTangential));
       }
+      // A penalty far above E/h makes Newton's region of convergence small: say so, with the
+      // value the automatic penalty would take (a step failing there is retried by penalty
+      // continuation, solver/load_stepper.cpp).
+      const double ratio = pair->penaltyRatio();
+      if (!config.automaticPenalty && ratio > 100) {
+        printOut(
+            fmt::format("contact '{}': the penalty is {:.3g} times the automatic one ({:.6g}, "
+                        "10 E/h of the contact surfaces)\n",
+                        config.name, ratio, config.referencePenalty));
+      }
     }
     if (!options.restartFile.empty()) {
       printOut(fmt::format("continuing from step {} (t = {:.6g}) of {}\n", startState.step,
