@@ -351,8 +351,12 @@ double ContactPair::penaltyRatio() const {
 }
 
 void ContactPair::scalePenalties(double factor) {
-  config_.law.penaltyNormal = factor * builtPenaltyNormal_;
-  config_.law.penaltyTangential = factor * builtPenaltyTangential_;
+  // Never below the automatic penalty: in a model whose other pair is far stiffer, this pair
+  // keeps its own penalty (or eps_ref) instead of losing its contact for the soft solves.
+  const double ratio = penaltyRatio();
+  const double own = ratio > 0 ? std::max(factor, std::min(1.0, 1.0 / ratio)) : 1.0;
+  config_.law.penaltyNormal = own * builtPenaltyNormal_;
+  config_.law.penaltyTangential = own * builtPenaltyTangential_;
 }
 
 }  // namespace cc::contact

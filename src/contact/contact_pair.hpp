@@ -103,7 +103,8 @@ class ContactPair : public Contribution {
 
   // Penalty continuation (solver/load_stepper.cpp): the larger of the pair's penalties over its
   // automatic penalty (0: unknown), and a factor on the penalties it was built with, for the
-  // solves of a step that approach a stiff penalty from the automatic one (1 restores them).
+  // solves of a step that approach a stiff penalty from the automatic one (1 restores them;
+  // a factor is never applied below the automatic penalty, nor to a pair whose is unknown).
   double penaltyRatio() const;
   void scalePenalties(double factor);
 

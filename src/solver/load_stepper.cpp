@@ -239,6 +239,10 @@ NewtonResult LoadStepper::solveByPenaltyContinuation(const NewtonSpec& spec, con
   NewtonStep stage = step;
   NewtonResult result;
   int iterations = 0;
+  struct Restore {  // the deck's penalties again, also when a solve throws (out of memory)
+    NonlinearProblem& problem;
+    ~Restore() { problem.scalePenalties(1.0); }
+  } restore{problem_};
   for (int k = 0; k <= stages; ++k) {
     // Equal factors from 1 / ratio (the automatic penalty) to exactly 1 (the deck's).
     problem_.scalePenalties(k == stages ? 1.0 : std::pow(ratio, double(k - stages) / stages));
@@ -252,7 +256,6 @@ NewtonResult LoadStepper::solveByPenaltyContinuation(const NewtonSpec& spec, con
       stage.referenceEnergy = newton_->firstEnergy();
     }
   }
-  problem_.scalePenalties(1.0);
   return result;
 }
 

@@ -225,6 +225,16 @@ TEST(AugmentedLagrangian, PenaltyContinuationCompletesTheFourthDecadeAboveTheAut
   const double penaltyError = 1 - pressForce(reference) / extrapolated;
   const double bound = 2 * 1e-3 * penaltyError;
   EXPECT_LE(std::abs(pressForce(augmented4) / extrapolated - 1), bound);
+  // The run ends with the deck's penalty; a factor never takes a pair below its automatic one.
+  contact::ContactPair& pair = *penalty4.model->contactPairs().front();
+  const double eps = pair.config().law.penaltyNormal;
+  EXPECT_NEAR(pair.penaltyRatio(), 1e4, 1e-6);
+  pair.scalePenalties(1e-8);
+  EXPECT_DOUBLE_EQ(pair.config().law.penaltyNormal, pair.config().referencePenalty);
+  pair.scalePenalties(1e-2);
+  EXPECT_DOUBLE_EQ(pair.config().law.penaltyNormal, 1e-2 * eps);
+  pair.scalePenalties(1.0);
+  EXPECT_EQ(pair.config().law.penaltyNormal, eps);
 }
 
 }  // namespace
