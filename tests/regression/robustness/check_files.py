@@ -29,9 +29,9 @@
   that solver=auto uses UMFPACK as a build without PETSc does), run under a real address-space
   limit (RLIMIT_AS, as `ulimit -v` or `prlimit --as` set it). The peaks of its first two steps
   (CHOLMOD) and of step 3 (UMFPACK, in contact) are measured first (VmPeak of unlimited runs on
-  one thread). A limit 24 MiB above the first two steps' peak: exit 8, a message naming UMFPACK (its ordering
-  in the analysis, or the factorization with the analysis's estimate of the factor), the
-  tangent's size and the limit, "the 2 converged steps are kept", and a file closed with outcome
+  one thread). A limit 24 MiB above the first two steps' peak: exit 8, a message naming
+  UMFPACK (its ordering in the analysis, or the factorization with the analysis's estimate of
+  the factor), the tangent's size and the limit, "the 2 converged steps are kept", and a file closed with outcome
   "out of memory" whose 2 steps equal those of the unlimited run bit for bit. Then limits every
   1/12 of the way from `check`'s peak to that limit, so that memory runs out in every part of
   the run that
