@@ -31,14 +31,13 @@
   (CHOLMOD) and of step 3 (UMFPACK, in contact) are measured first (VmPeak of unlimited runs on
   one thread). A limit 24 MiB above the first two steps' peak: exit 8, a message naming
   UMFPACK (its ordering in the analysis, or the factorization with the analysis's estimate of
-  the factor), the tangent's size and the limit, "the 2 converged steps are kept", and a file closed with outcome
-  "out of memory" whose 2 steps equal those of the unlimited run bit for bit. Then limits every
-  1/12 of the way from `check`'s peak to that limit, so that memory runs out in every part of
-  the run that
-  allocates (building the model, the BLAS work buffer, CHOLMOD, UMFPACK's ordering and
-  factorization): each run ends within the timeout with exit 8, a message saying what does not
-  fit and the limit, never an internal error, a crash or a hang; its file, when it has one,
-  holds the converged steps it reports.
+  the factor), the tangent's size and the limit, "the 2 converged steps are kept", and a file
+  closed with outcome "out of memory" whose 2 steps equal those of the unlimited run bit for
+  bit. Then limits every 1/12 of the way from `check`'s peak to that limit, so that memory runs
+  out in every part of the run that allocates (building the model, the BLAS work buffer,
+  CHOLMOD, UMFPACK's ordering and factorization): each run ends within the timeout with exit 8,
+  a message saying what does not fit and the limit, never an internal error, a crash or a hang;
+  its file, when it has one, holds the converged steps it reports.
 --case out_of_memory_mumps: the same with the plugin: solver=auto factors step 3's 13 872
   unsymmetric equations with MUMPS (PETSc and MPI started at that moment). The limit goes just
   under the full run's peak: the message names MUMPS and its analysis's estimate. Lower limits of
