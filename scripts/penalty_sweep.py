@@ -82,7 +82,8 @@ def deck_text(case, options, hertz_m):
 
 
 def set_reaction(step, name):
-    names = [n.decode() if isinstance(n, bytes) else n for n in step["set_reactions"].attrs["names"]]
+    names = [n.decode() if isinstance(n, bytes) else n
+             for n in step["set_reactions"].attrs["names"]]
     return step["set_reactions"][names.index(name)]
 
 
@@ -126,7 +127,8 @@ def main():
     args = parser.parse_args()
     os.makedirs(args.work, exist_ok=True)
     prepare(args.work)
-    print(f"covcontact {os.path.abspath(args.covcontact)}, {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}, "
+    stamp = time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())
+    print(f"covcontact {os.path.abspath(args.covcontact)}, {stamp}, "
           f"load average {os.getloadavg()[0]:.1f}")
     for case in args.cases.split(","):
         print(f"\n### {case}\n")
@@ -157,13 +159,16 @@ def main():
                 cpu = (end.children_user + end.children_system) - \
                       (start.children_user + start.children_system)
                 if not os.path.exists(results):
-                    print(f"| {scale} | {enforcement} | exit {code}, no results | | | | | | | {cpu:.1f} |")
+                    print(f"| {scale} | {enforcement} | exit {code}, no results "
+                          f"| | | | | | | {cpu:.1f} |")
                     continue
                 m = measure(results, set_name, pair)
                 outcome = m["outcome"] if code == 0 else f"exit {code} at t = {m['end_time']:.4g}"
-                print(f"| {scale} | {enforcement} | {outcome} | {m['iterations']} (+{m['discarded']}) | "
-                      f"{m['line_search']} / {m['continuation']} | {m['cutbacks']} ({m['steps']}) | "
-                      f"{m['press']:.6f} | {m['drag']:.5f} | {m['deepest']:.2e} | {cpu:.1f} |",
+                print(f"| {scale} | {enforcement} | {outcome} "
+                      f"| {m['iterations']} (+{m['discarded']}) "
+                      f"| {m['line_search']} / {m['continuation']} "
+                      f"| {m['cutbacks']} ({m['steps']}) "
+                      f"| {m['press']:.6f} | {m['drag']:.5f} | {m['deepest']:.2e} | {cpu:.1f} |",
                       flush=True)
     return 0
 
