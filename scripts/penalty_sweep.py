@@ -6,7 +6,8 @@ line-search and continuation retries, cut-backs) and the results (press force, f
 force, deepest penetration), for docs/verification/augmented_lagrangian.md.
 
 Cases:
-  block  the small block of tests/regression/contact/test_augmented_lagrangian.cpp (4 x 2
+  block  input/verification/contact/augmented_block.deck, the block of
+         tests/regression/contact/test_augmented_lagrangian.cpp (4 x 2
          elements pressed onto an elastic base by 4e-3, dragged by 4e-3 in 4 steps; residual
          criterion 1e-10); under a second per run.
   6.1b   input/paper/sliding_block_6_1b_exact.deck with its eps_n/eps_t replaced by eps_scale=
@@ -31,24 +32,7 @@ import numpy as np
 
 SOURCE = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
-BLOCK_DECK = """\
-mesh "../../../meshes/block_on_base.geo" nx=4 ny=2 nz=1 nbx=5 nby=1 blockLength=2 blockHeight=1 baseLength=2.5 baseHeight=0.5 thickness=0.5
-material elastic svk E=2.1e4 nu=0.3
-elements block hex8 material=elastic
-elements base hex8 material=elastic
-fix base_bottom all
-fix block_front uz
-fix block_back uz
-fix base_front uz
-fix base_back uz
-prescribe block_top uy "-4e-3*min(t,1)" ux "1e-3*max(t-1,0)"
-contact sts master=block_bottom slave=base_top mu=0.3 {options} name=interface
-solve
-  newton converge=residual residual=1e-10
-  steps 1 dt=1
-  steps 4 dt=1
-end
-"""
+BLOCK_CONTACT = "contact sts master=block_bottom slave=base_top mu=0.3"
 
 
 def prepare(work):
@@ -62,8 +46,11 @@ def prepare(work):
 
 def deck_text(case, options, hertz_m):
     if case == "block":
-        return BLOCK_DECK.format(options=options), ("input", "verification", "contact"), \
-            "block_top", ("interface", 4e-3)
+        path = os.path.join(SOURCE, "input", "verification", "contact", "augmented_block.deck")
+        text = open(path).read()
+        assert BLOCK_CONTACT in text, f"block: {BLOCK_CONTACT!r} not found"
+        text = text.replace(BLOCK_CONTACT, f"{BLOCK_CONTACT} {options}", 1)
+        return text, ("input", "verification", "contact"), "block_top", ("interface", 4e-3)
     if case == "6.1b":
         path = os.path.join(SOURCE, "input", "paper", "sliding_block_6_1b_exact.deck")
         text = open(path).read()

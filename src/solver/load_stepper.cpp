@@ -164,16 +164,11 @@ bool LoadStepper::runPhase(const PhaseSpec& phase, double phaseStart, PhaseRun& 
       // Newton on the non-smooth stick/slip law can cycle between states without any step size
       // helping (penalty contact is scale-free in the increment); a line search usually breaks
       // the cycle, so it is tried on the same step before the step is cut back.
-      problem_.restoreStep();
-      run.displacement = run.converged;
       ++summary_.lineSearchRetries;
-      summary_.discardedIterations += result.iterations;
-      observer_.cutback({step.step, step.time, (target - position) * phase.dt,
-                         "retrying the step with line search: " + result.message});
+      const NewtonStep retry = retryStep(step, result, (target - position) * phase.dt,
+                                         "retrying the step with line search: ", control, run);
       NewtonSpec withLineSearch = phase.newton;
       withLineSearch.lineSearch = true;
-      NewtonStep retry{run.step + 1, control.attempts++, targetTime, run.time};
-      retry.predictedIncrement = step.predictedIncrement;
       result = newton_->solve(retry, withLineSearch, run.displacement);
     }
     if (result.status == NewtonResult::Status::Failed && result.failure == FailureKind::Diverged &&
@@ -181,14 +176,10 @@ bool LoadStepper::runPhase(const PhaseSpec& phase, double phaseStart, PhaseRun& 
       // A stiff penalty whose step fails with and without line search fails the same way at
       // every step size (its convergence region shrinks with 1 / eps, not with dt): the step is
       // approached from the automatic penalty before it is cut back.
-      problem_.restoreStep();
-      run.displacement = run.converged;
       ++summary_.continuationRetries;
-      summary_.discardedIterations += result.iterations;
-      observer_.cutback({step.step, step.time, (target - position) * phase.dt,
-                         "retrying the step by penalty continuation: " + result.message});
-      NewtonStep retry{run.step + 1, control.attempts++, targetTime, run.time};
-      retry.predictedIncrement = step.predictedIncrement;
+      const NewtonStep retry =
+          retryStep(step, result, (target - position) * phase.dt,
+                    "retrying the step by penalty continuation: ", control, run);
       result = solveByPenaltyContinuation(phase.newton, retry, run);
     }
     if (result.status == NewtonResult::Status::Converged) {
@@ -204,6 +195,20 @@ bool LoadStepper::runPhase(const PhaseSpec& phase, double phaseStart, PhaseRun& 
     }
   }
   return true;
+}
+
+// A failed attempt that is retried on the same step (not cut back): its trial state is
+// forgotten, its iterations counted as discarded and the retry logged (with `how` and the
+// failure) like a cut-back; returns the retry's step, at the same time and predictor.
+NewtonStep LoadStepper::retryStep(const NewtonStep& failed, const NewtonResult& result, double dt,
+                                  const std::string& how, StepControl& control, PhaseRun& run) {
+  problem_.restoreStep();
+  run.displacement = run.converged;
+  summary_.discardedIterations += result.iterations;
+  observer_.cutback({failed.step, failed.time, dt, how + result.message});
+  NewtonStep retry{run.step + 1, control.attempts++, failed.time, run.time};
+  retry.predictedIncrement = failed.predictedIncrement;
+  return retry;
 }
 
 // The extrapolated increment of a step to targetTime: the last converged step's increment times

@@ -79,6 +79,9 @@ class LoadStepper {
   // NewtonSpec::Predictor::Extrapolate: the increment of the step to targetTime (null: none).
   const Eigen::VectorXd* predictedIncrement(const PhaseSpec& phase, double targetTime,
                                             PhaseRun& run) const;
+  // Prepares the retry of a failed attempt on the same step (load_stepper.cpp).
+  NewtonStep retryStep(const NewtonStep& failed, const NewtonResult& result, double dt,
+                       const std::string& how, StepControl& control, PhaseRun& run);
   // A step solved at contact penalties growing from the automatic ones to the deck's
   // (load_stepper.cpp): the retry of a stiff penalty's failed step before it is cut back.
   NewtonResult solveByPenaltyContinuation(const NewtonSpec& spec, const NewtonStep& step,

@@ -50,30 +50,20 @@ TEST(AutomaticPenalty, IsTenTimesEOverHOnExample61) {
   EXPECT_LE((actual - expected).norm(), 1e-8 * expected.norm());
 }
 
-// The small block of the tests below: pressed onto an elastic base (4e-3), then dragged by
-// 4e-3 in 4 steps; `options` completes the contact line (enforcement, eps_scale, ...).
+// The small block of the tests below (input/verification/contact/augmented_block.deck): pressed
+// onto an elastic base (4e-3), then dragged by 4e-3 in 4 steps; `options` completes the contact
+// line (enforcement, eps_scale, ...), `newtonOptions` the newton line. scripts/penalty_sweep.py
+// runs the same deck.
 DeckRun runSmallBlock(const std::string& options, const std::string& newtonOptions = "") {
-  const std::string path = kSourceDir + "/input/verification/contact/inline.deck";
-  const std::string text = R"deck(
-mesh "../../../meshes/block_on_base.geo" nx=4 ny=2 nz=1 nbx=5 nby=1 blockLength=2 blockHeight=1 baseLength=2.5 baseHeight=0.5 thickness=0.5
-material elastic svk E=2.1e4 nu=0.3
-elements block hex8 material=elastic
-elements base hex8 material=elastic
-fix base_bottom all
-fix block_front uz
-fix block_back uz
-fix base_front uz
-fix base_back uz
-prescribe block_top uy "-4e-3*min(t,1)" ux "1e-3*max(t-1,0)"
-contact sts master=block_bottom slave=base_top mu=0.3 )deck" +
-                           options + R"deck( name=interface
-solve
-  newton converge=residual residual=1e-10 )deck" +
-                           newtonOptions + R"deck(
-  steps 1 dt=1
-  steps 4 dt=1
-end
-)deck";
+  const std::string path = kSourceDir + "/input/verification/contact/augmented_block.deck";
+  std::string text = readFile(path);
+  auto complete = [&text](const std::string& line, const std::string& added) {
+    const std::size_t at = text.find(line);
+    EXPECT_NE(at, std::string::npos) << line;
+    if (at != std::string::npos) text.insert(at + line.size(), " " + added);
+  };
+  complete("contact sts master=block_bottom slave=base_top mu=0.3", options);
+  complete("newton converge=residual residual=1e-10", newtonOptions);
   return runDeckText(text, path);
 }
 
