@@ -8,6 +8,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "contact/anderson_acceleration.hpp"
@@ -35,6 +36,9 @@ struct ContactPairConfig {
   double augmentationTolerance = 1e-3;
   int maxAugmentations = 100;
   int accelerationDepth = 5;  // Anderson depth of the Uzawa updates (0: plain Uzawa)
+  // When the updates stall at a penalty below referencePenalty, raise the penalties
+  // (contact_pair_augmentation.cpp, kStallWindow).
+  bool growPenalty = true;
   // The automatic penalty at eps_scale = 1 (model/automatic_penalty.hpp), also when the deck
   // gives eps: a penalty below it tightens the stopping rule so that the penetration left is
   // bounded as with this one (0: unknown, the rule uses eps itself).
@@ -99,6 +103,8 @@ class ContactPair : public Contribution {
   enum class Augmentation { Converged, Updated, Failed };
   Augmentation augment();
   const std::string& augmentationMessage() const { return lastAugmentationMessage_; }
+  // What the last augment() changed beyond the multipliers (a raised penalty), once; or empty.
+  std::string takeAugmentationNote() { return std::exchange(augmentationNote_, {}); }
   int augmentations() const { return augmentations_; }
 
   // Penalty continuation (solver/load_stepper.cpp): the larger of the pair's penalties over its
@@ -148,6 +154,9 @@ class ContactPair : public Contribution {
   // At commit / cut-back: the multipliers of the step become committed / are forgotten.
   void commitAugmentation();
   void restoreAugmentation();
+  // aug_grow: raises the penalties when the updates (ratio: this one over the normal force)
+  // stall below the automatic penalty; true if it did.
+  bool raisePenaltyIfStalled(double ratio);
   // integration=segments (contact_pair_segments.cpp): the points of the segmentation at the
   // converged configuration of the step's start, each with the history of the nearest old point
   // on its slave segment, re-projected there.
@@ -185,6 +194,8 @@ class ContactPair : public Contribution {
   int augmentations_ = 0;                // Uzawa updates in the current step
   AndersonAcceleration accelerator_{0};  // of the Uzawa updates; reset at commit and cut-back
   std::string lastAugmentationMessage_;
+  std::string augmentationNote_;
+  std::vector<double> updateRatios_;  // this step's multiplier update / normal force, per update
   double stepDissipation_ = 0;
   double dissipatedEnergy_ = 0;  // since the start of this run (not part of the restart data)
 };

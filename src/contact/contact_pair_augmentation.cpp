@@ -55,6 +55,10 @@ ContactPair::Augmentation ContactPair::augment() {
         config_.name, augmentations_, update, force);
     return Augmentation::Failed;
   }
+  if (force > 0 && raisePenaltyIfStalled(update / force)) {
+    ++augmentations_;
+    return Augmentation::Updated;  // solved again with the same multipliers, stiffer penalty
+  }
   // The Uzawa image of the multipliers (4 per point: lambda_N and the augmentation A), then
   // Anderson's combination of the last images (aug_depth; 0 keeps plain Uzawa).
   const std::size_t count = points_.size();
@@ -84,12 +88,56 @@ ContactPair::Augmentation ContactPair::augment() {
   return Augmentation::Updated;
 }
 
+// A stall of the updates (aug_grow): plain Uzawa contracts like k / (k + eps) per update for a
+// contact mode of stiffness k, and Anderson's combination restarts where points change state;
+// at eps = 1e-2 eps_ref example 6.1(b) hovered at 1.6e-3 of the normal force (aug_tol 1e-3) for
+// 100 updates where the block's leading edge turns from stick to slip, and the run failed at any
+// step size. The converged multipliers do not depend on eps (they satisfy the constraint), so a
+// pair whose updates have not halved over kStallWindow updates, at a penalty below the
+// automatic one, takes a tenfold penalty (at most the automatic one) and keeps it for the rest
+// of the run; the Anderson history restarts because the map changed.
+namespace {
+constexpr std::size_t kStallWindow = 10;
+constexpr double kStallProgress = 0.5;
+constexpr double kPenaltyGrowth = 10;
+}  // namespace
+
+bool ContactPair::raisePenaltyIfStalled(double ratio) {
+  updateRatios_.push_back(ratio);
+  const std::size_t count = updateRatios_.size();
+  if (!config_.growPenalty || count <= kStallWindow ||
+      ratio <= kStallProgress * updateRatios_[count - 1 - kStallWindow]) {
+    return false;
+  }
+  const double reference = config_.referencePenalty;
+  const double softest =
+      std::min(builtPenaltyNormal_,
+               builtPenaltyTangential_ > 0 ? builtPenaltyTangential_ : builtPenaltyNormal_);
+  if (!(reference > 0) || !(softest < reference)) return false;
+  const double factor = std::min(kPenaltyGrowth, reference / softest);
+  const double before = builtPenaltyNormal_;
+  builtPenaltyNormal_ *= factor;
+  builtPenaltyTangential_ *= factor;
+  config_.law.penaltyNormal *= factor;
+  config_.law.penaltyTangential *= factor;
+  accelerator_.reset();
+  updateRatios_.clear();
+  augmentationNote_ = fmt::format(
+      "contact pair '{}': the multiplier updates stalled at {:.3g} of the normal contact force "
+      "(aug_tol {:.3g}) after {} updates; eps_n {:.4g} -> {:.4g} (x{:.3g}, at most the automatic "
+      "{:.4g}) for the rest of the run (aug_grow=no keeps it)",
+      config_.name, ratio, config_.augmentationTolerance, augmentations_ + 1, before,
+      builtPenaltyNormal_, factor, reference);
+  return true;
+}
+
 void ContactPair::commitAugmentation() {
   for (PairPoint& point : points_) {
     point.committedMultiplierNormal = point.multiplierNormal;
     point.tractionAugmentation.setZero();  // T^(n+1) includes it
   }
   augmentations_ = 0;
+  updateRatios_.clear();
   accelerator_.reset();
 }
 
@@ -99,6 +147,7 @@ void ContactPair::restoreAugmentation() {
     point.tractionAugmentation.setZero();
   }
   augmentations_ = 0;
+  updateRatios_.clear();
   accelerator_.reset();
 }
 

@@ -165,7 +165,7 @@ void handleContact(const ParsedLine& line, DeckState& state) {
   contact.penaltyScale = line.number("eps_scale");
   contact.enforcement = choiceValue(contactEnforcements(), line.text("enforcement"));
   if (contact.enforcement == ContactSpec::Enforcement::Penalty) {
-    for (const char* name : {"aug_tol", "aug_max", "aug_depth"}) {
+    for (const char* name : {"aug_tol", "aug_max", "aug_depth", "aug_grow"}) {
       if (line.given(name)) {
         fail(line.value(name).where,
              fmt::format("{}= applies to enforcement=augmented only", name));
@@ -175,6 +175,7 @@ void handleContact(const ParsedLine& line, DeckState& state) {
   contact.augmentationTolerance = line.number("aug_tol");
   contact.maxAugmentations = line.integer("aug_max");
   contact.accelerationDepth = line.integer("aug_depth");
+  contact.growPenalty = line.flag("aug_grow");
   if (contact.kind == ContactSpec::Kind::NodeToSegment && line.given("points")) {
     fail(line.value("points").where,
          "points= applies to sts and stas pairs only (nts uses the slave nodes)");

@@ -224,6 +224,11 @@ KeywordDecl contactKeyword() {
                         "last aug_depth updates (0: plain Uzawa)")
                .withRange(Range::between(0, true, 50, true))
                .withDefault("5"),
+           boolValue("aug_grow",
+                     "augmented: when the updates stall (less than halved over 10 updates) "
+                     "at a penalty below the automatic one, raise eps_n and eps_t tenfold, at "
+                     "most to the automatic penalty, for the rest of the run")
+               .withDefault("yes"),
            numberValue("mu", "Coulomb friction coefficient (0: frictionless)")
                .withRange(Range::atLeast(0))
                .withDefault("0"),

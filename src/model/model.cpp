@@ -67,14 +67,18 @@ NonlinearProblem::Augmentation Model::augment() {
   completeContactTrials();
   Augmentation result;
   for (auto& pair : contactPairs_) {
-    switch (pair->augment()) {
+    const contact::ContactPair::Augmentation status = pair->augment();
+    if (std::string note = pair->takeAugmentationNote(); !note.empty()) {
+      result.note += (result.note.empty() ? "" : "\n") + note;
+    }
+    switch (status) {
       case contact::ContactPair::Augmentation::Converged:
         break;
       case contact::ContactPair::Augmentation::Updated:
         result.status = Augmentation::Status::Updated;
         break;
       case contact::ContactPair::Augmentation::Failed:
-        return {Augmentation::Status::Failed, pair->augmentationMessage()};
+        return {Augmentation::Status::Failed, pair->augmentationMessage(), result.note};
     }
   }
   return result;

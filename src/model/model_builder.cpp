@@ -182,6 +182,7 @@ contact::ContactPairConfig pairConfig(const ContactSpec& spec) {
   config.augmentationTolerance = spec.augmentationTolerance;
   config.maxAugmentations = spec.maxAugmentations;
   config.accelerationDepth = spec.accelerationDepth;
+  config.growPenalty = spec.growPenalty;
   config.integrationPoints = spec.integrationPoints;
   config.tangentMode = spec.tangentMode == ContactSpec::TangentMode::Exact
                            ? contact::TangentMode::Exact

@@ -278,6 +278,7 @@ NewtonResult LoadStepper::augmentStep(const PhaseSpec& phase, const NewtonStep& 
   resolve.referenceEnergy = newton_->firstEnergy();
   for (;;) {
     const NonlinearProblem::Augmentation augmentation = problem_.augment();
+    if (!augmentation.note.empty()) observer_.note(augmentation.note);
     using Status = NonlinearProblem::Augmentation::Status;
     if (augmentation.status == Status::Converged) return result;
     if (augmentation.status == Status::Failed) {

@@ -38,6 +38,7 @@ class NonlinearProblem {
     enum class Status { Converged, Updated, Failed };
     Status status = Status::Converged;
     std::string message;
+    std::string note;  // for the log: what changed beyond the multipliers (a raised penalty)
   };
   virtual Augmentation augment() { return {}; }
   // Penalty continuation (load_stepper.cpp): the largest ratio of a contact pair's penalty to

@@ -125,6 +125,7 @@ struct ContactSpec {
   double augmentationTolerance = 1e-3;  // aug_tol: integrated multiplier update / contact force
   int maxAugmentations = 100;           // aug_max: Uzawa updates per step before giving up
   int accelerationDepth = 5;            // aug_depth: Anderson depth of the updates (0: plain)
+  bool growPenalty = true;              // aug_grow: raise a soft penalty when the updates stall
   double friction = 0;                  // mu >= 0; mu = 0 computes no tangential terms
   int integrationPoints = 2;            // Gauss points per direction (STS, STAS)
   TangentMode tangentMode = TangentMode::Paper;
