@@ -56,10 +56,11 @@ void Progress::iteration(const IterationRecord& r) {
 
 void Progress::stepConverged(int step, double time, int iterations, int cutbacks) {
   if (quiet_) return;
-  const std::string text =
-      fmt::format("step {}/{}  t = {:.6g}  {} iterations{}  |R|/|R0| = {:.2e}", step, plannedSteps_,
-                  time, iterations, cutbacks ? fmt::format(" after {} cut-backs", cutbacks) : "",
-                  lastRelativeResidual_);
+  const std::string text = fmt::format(
+      "step {}/{}  t = {:.6g}  {} iterations{}  |R|/|R0| = {:.2e}", step, plannedSteps_, time,
+      iterations, cutbacks ? fmt::format(" after {} cut-backs", cutbacks) : "",
+      convergedRelativeResidual_ >= 0 ? convergedRelativeResidual_ : lastRelativeResidual_);
+  convergedRelativeResidual_ = -1;
   if (terminal_) {
     printLive(text);
   } else {

@@ -20,6 +20,8 @@ class Progress {
  public:
   Progress(int plannedSteps, bool quiet, bool newtonLog = false);
   void iteration(const IterationRecord& record);
+  // The step's final |R|/|R0| for the next stepConverged line (else the last iteration's).
+  void convergedResidual(double relative) { convergedRelativeResidual_ = relative; }
   void stepConverged(int step, double time, int iterations, int cutbacks);
   void cutback(const CutbackRecord& record);
   // A line of its own (linear solver choice, Krylov fallback), also when quiet.
@@ -35,6 +37,7 @@ class Progress {
   bool terminal_;
   bool liveLineOpen_ = false;
   double lastRelativeResidual_ = 0;
+  double convergedRelativeResidual_ = -1;  // from convergedResidual(); negative: none
 };
 
 }  // namespace cc::app

@@ -96,6 +96,9 @@ class RunObserver : public StepObserver {
   // The stepper whose next step size the restart data of every written step records.
   void attach(const LoadStepper& stepper) { stepper_ = &stepper; }
 
+  void convergedResidual(double relative) override {
+    if (reports_) progress_.convergedResidual(relative);
+  }
   void stepConverged(int step, double time, int iterations, int cutbacks,
                      const Eigen::VectorXd& displacement, const Eigen::VectorXd& internalForce,
                      bool writeOutput) override {

@@ -313,6 +313,7 @@ bool LoadStepper::acceptStep(const PhaseSpec& phase, const NewtonResult& result,
   }
   // At a phase end the next phase starts with a full step.
   nextStepSize_ = phaseEnd ? StepSize{} : StepSize{control.fraction, control.easySteps};
+  observer_.convergedResidual(newton_->finalRelativeResidual());
   observer_.stepConverged(run.step, time, result.iterations, control.cutbacks, run.displacement,
                           newton_->internalForce(), write);
   control.cutbacks = 0;

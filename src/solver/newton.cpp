@@ -341,6 +341,7 @@ NewtonResult Newton::solve(const NewtonStep& step, const NewtonSpec& spec,
       atRoundoff = norms.residual <= kRoundoffStiffness * stiffnessForceScale();
     }
     if (iteration > 1 && usesResidual(spec.criterion) && (residualMet || atRoundoff)) {
+      finalRelativeResidual_ = norms.relativeResidual();
       return converged(iteration - 1);
     }
     if (iteration > 1 && norms.relativeResidual() > spec.divergenceFactor) {
@@ -416,6 +417,8 @@ NewtonResult Newton::solve(const NewtonStep& step, const NewtonSpec& spec,
       } catch (const StepFailure& failure) {
         return failed(iteration, failure.kind(), failure.what());
       }
+      finalRelativeResidual_ =
+          norms.firstResidual > 0 ? safeNorm(freeResidual()) / norms.firstResidual : 0.0;
       return converged(iteration);
     }
     if (observer_.stopRequested()) {

@@ -128,6 +128,9 @@ class Newton {
   const Eigen::VectorXd& internalForce() const { return internalForce_; }
   // The first residual and energy norms of the last solve (what its relative norms divide by).
   double firstResidual() const { return firstResidual_; }
+  // |R|/|R0| at the state the last converged solve ended in (after its last update; the
+  // iteration records give the residual before each update).
+  double finalRelativeResidual() const { return finalRelativeResidual_; }
   double firstEnergy() const { return firstEnergy_; }
   int assemblies() const { return assemblies_; }
   double assemblySeconds() const { return assemblySeconds_; }
@@ -156,6 +159,7 @@ class Newton {
   SystemMatrices tangent_;
   Eigen::VectorXd internalForce_;
   double firstResidual_ = 0, firstEnergy_ = 0;
+  double finalRelativeResidual_ = 0;
   Eigen::VectorXd externalForce_;
   Eigen::Matrix3Xd current_;
   Eigen::Matrix3Xd previous_;

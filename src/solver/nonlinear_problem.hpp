@@ -68,6 +68,9 @@ class StepObserver {
   virtual ~StepObserver() = default;
   virtual void iteration(const IterationRecord&) {}
   virtual void cutback(const CutbackRecord&) {}
+  // |R|/|R0| at the state the step converged to, just before stepConverged (the iteration
+  // records hold the residual before each update, not after the last).
+  virtual void convergedResidual(double /*relative*/) {}
   // A step converged (after commitStep). displacement and internalForce are 3 * numNodes.
   virtual void stepConverged(int step, double time, int iterations, int cutbacks,
                              const Eigen::VectorXd& displacement,

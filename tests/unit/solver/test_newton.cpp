@@ -148,6 +148,36 @@ TEST(Newton, HardeningChainConvergesQuadraticallyToTheClosedFormSolution) {
   }
 }
 
+// The residual Newton reports for a converged step is that of the state it ended in: the
+// iteration records hold the residual before each update, so the last one (energy criterion)
+// is the residual before the final update, orders of magnitude above the final state's. The
+// progress line of `covcontact run` showed it (e.g. 4.67e-01 for a converged re-solve).
+TEST(Newton, ReportsTheResidualOfTheStateItConvergedTo) {
+  const int springs = 4;
+  const double k = 1.0, a = 1.0, force = 2.0;
+  SpringChain chain(springs, SpringLaw::cubic(k, a), {}, [&](double t) { return force * t; });
+  RecordingObserver observer;
+  Newton newton(chain, observer, Newton::Clock::now());
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(3 * (springs + 1));
+  NewtonSpec spec;  // the residual criterion leaves a final residual above round-off
+  spec.criterion = NewtonSpec::Criterion::Residual;
+  spec.residualTolerance = 1e-6;
+  const NewtonResult result = newton.solve({1, 0, 1.0, 0.0}, spec, u);
+  ASSERT_EQ(result.status, NewtonResult::Status::Converged) << result.message;
+  // Independently: the unbalanced force of every free node at the final displacement (the
+  // first residual is the end load, the chain starting unstressed).
+  Eigen::VectorXd residual(springs);
+  for (int node = 1; node <= springs; ++node) {
+    residual[node - 1] = newton.internalForce()[3 * node] - (node == springs ? force : 0.0);
+  }
+  const double expected = residual.norm() / force;
+  EXPECT_GT(expected, 1e-13);  // above round-off: the comparison below means something
+  EXPECT_LE(expected, spec.residualTolerance);
+  EXPECT_NEAR(newton.finalRelativeResidual(), expected, 1e-3 * expected);
+  ASSERT_FALSE(observer.iterations.empty());
+  EXPECT_LT(newton.finalRelativeResidual(), 1e-3 * observer.iterations.back().relativeResidual);
+}
+
 TEST(Newton, LineSearchRescuesFullStepsThatOvershootOnASofteningSpring) {
   // One atan spring loaded by F = atan(0.5), started at d = 5 on the plateau: the full Newton
   // step jumps to d = -18.6 and the iteration runs away; halving the step keeps it near.
