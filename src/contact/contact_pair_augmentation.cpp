@@ -110,24 +110,29 @@ bool ContactPair::raisePenaltyIfStalled(double ratio) {
     return false;
   }
   const double reference = config_.referencePenalty;
-  const double softest =
-      std::min(builtPenaltyNormal_,
-               builtPenaltyTangential_ > 0 ? builtPenaltyTangential_ : builtPenaltyNormal_);
-  if (!(reference > 0) || !(softest < reference)) return false;
-  const double factor = std::min(kPenaltyGrowth, reference / softest);
-  const double before = builtPenaltyNormal_;
-  builtPenaltyNormal_ *= factor;
-  builtPenaltyTangential_ *= factor;
-  config_.law.penaltyNormal *= factor;
-  config_.law.penaltyTangential *= factor;
+  // Each penalty below the automatic one grows by up to kPenaltyGrowth, none beyond it (a
+  // frictionless pair's eps_T = 0 stays 0).
+  auto raised = [reference](double penalty) {
+    return penalty > 0 && penalty < reference ? std::min(kPenaltyGrowth * penalty, reference)
+                                              : penalty;
+  };
+  const double beforeNormal = builtPenaltyNormal_, beforeTangential = builtPenaltyTangential_;
+  builtPenaltyNormal_ = raised(beforeNormal);
+  builtPenaltyTangential_ = raised(beforeTangential);
+  if (builtPenaltyNormal_ == beforeNormal && builtPenaltyTangential_ == beforeTangential) {
+    return false;
+  }
+  // augment() runs after the solves of a step, when no continuation scales the penalties.
+  config_.law.penaltyNormal = builtPenaltyNormal_;
+  config_.law.penaltyTangential = builtPenaltyTangential_;
   accelerator_.reset();
   updateRatios_.clear();
   augmentationNote_ = fmt::format(
       "contact pair '{}': the multiplier updates stalled at {:.3g} of the normal contact force "
-      "(aug_tol {:.3g}) after {} updates; eps_n {:.4g} -> {:.4g} (x{:.3g}, at most the automatic "
-      "{:.4g}) for the rest of the run (aug_grow=no keeps it)",
-      config_.name, ratio, config_.augmentationTolerance, augmentations_ + 1, before,
-      builtPenaltyNormal_, factor, reference);
+      "(aug_tol {:.3g}) after {} updates; eps_n {:.4g} -> {:.4g}, eps_t {:.4g} -> {:.4g} (at most "
+      "the automatic {:.4g}) for the rest of the run (aug_grow=no keeps them)",
+      config_.name, ratio, config_.augmentationTolerance, augmentations_ + 1, beforeNormal,
+      builtPenaltyNormal_, beforeTangential, builtPenaltyTangential_, reference);
   return true;
 }
 
