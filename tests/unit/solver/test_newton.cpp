@@ -149,9 +149,11 @@ TEST(Newton, HardeningChainConvergesQuadraticallyToTheClosedFormSolution) {
 }
 
 // The residual Newton reports for a converged step is that of the state it ended in: the
-// iteration records hold the residual before each update, so the last one (energy criterion)
-// is the residual before the final update, orders of magnitude above the final state's. The
-// progress line of `covcontact run` showed it (e.g. 4.67e-01 for a converged re-solve).
+// iteration records hold the residual before each update, so the last one belongs to the state
+// before the final update, orders of magnitude above the final state's (with the energy
+// criterion the final residual is often round-off; the residual criterion leaves one to
+// compare). The progress line of `covcontact run` showed the last record (e.g. 4.67e-01 for a
+// converged augmented re-solve).
 TEST(Newton, ReportsTheResidualOfTheStateItConvergedTo) {
   const int springs = 4;
   const double k = 1.0, a = 1.0, force = 2.0;
