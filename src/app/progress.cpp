@@ -38,7 +38,6 @@ void Progress::printLive(const std::string& text) {
 }
 
 void Progress::iteration(const IterationRecord& r) {
-  lastRelativeResidual_ = r.relativeResidual;
   if (newtonLog_) {
     finish();
     printOut(fmt::format(
@@ -56,11 +55,10 @@ void Progress::iteration(const IterationRecord& r) {
 
 void Progress::stepConverged(int step, double time, int iterations, int cutbacks) {
   if (quiet_) return;
-  const std::string text = fmt::format(
-      "step {}/{}  t = {:.6g}  {} iterations{}  |R|/|R0| = {:.2e}", step, plannedSteps_, time,
-      iterations, cutbacks ? fmt::format(" after {} cut-backs", cutbacks) : "",
-      convergedRelativeResidual_ >= 0 ? convergedRelativeResidual_ : lastRelativeResidual_);
-  convergedRelativeResidual_ = -1;
+  const std::string text =
+      fmt::format("step {}/{}  t = {:.6g}  {} iterations{}  |R|/|R0| = {:.2e}", step, plannedSteps_,
+                  time, iterations, cutbacks ? fmt::format(" after {} cut-backs", cutbacks) : "",
+                  convergedRelativeResidual_);
   if (terminal_) {
     printLive(text);
   } else {

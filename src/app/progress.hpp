@@ -20,7 +20,8 @@ class Progress {
  public:
   Progress(int plannedSteps, bool quiet, bool newtonLog = false);
   void iteration(const IterationRecord& record);
-  // The step's final |R|/|R0| for the next stepConverged line (else the last iteration's).
+  // The step's final |R|/|R0| for the next stepConverged line (the load stepper reports it
+  // just before every converged step).
   void convergedResidual(double relative) { convergedRelativeResidual_ = relative; }
   void stepConverged(int step, double time, int iterations, int cutbacks);
   void cutback(const CutbackRecord& record);
@@ -36,8 +37,7 @@ class Progress {
   bool newtonLog_;
   bool terminal_;
   bool liveLineOpen_ = false;
-  double lastRelativeResidual_ = 0;
-  double convergedRelativeResidual_ = -1;  // from convergedResidual(); negative: none
+  double convergedRelativeResidual_ = 0;  // from convergedResidual()
 };
 
 }  // namespace cc::app
