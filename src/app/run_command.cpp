@@ -10,6 +10,7 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <csignal>
@@ -385,6 +386,17 @@ int runCommand(const RunOptions& options) {
                         "10 E/h of the contact surfaces)\n",
                         config.name, ratio, config.referencePenalty));
       }
+    }
+    // The line search that an augmented pair turns on (deck/solve_keywords.cpp) changes the
+    // Newton counts a user compares between runs: say so.
+    const bool defaultLineSearch =
+        std::any_of(spec.phases.begin(), spec.phases.end(), [](const PhaseSpec& phase) {
+          return phase.newton.lineSearch && !phase.newton.lineSearchChosen;
+        });
+    if (defaultLineSearch) {
+      printOut(
+          "newton: line search on (an enforcement=augmented contact pair; line_search=no "
+          "turns it off)\n");
     }
     if (!options.restartFile.empty()) {
       printOut(fmt::format("continuing from step {} (t = {:.6g}) of {}\n", startState.step,

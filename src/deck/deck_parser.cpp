@@ -79,6 +79,7 @@ ProblemSpec parseDeckText(const std::string& text, const std::string& virtualPat
   state.spec.deckFiles = source.files;
   for (const deck::LogicalLine& line : source.lines) dispatch(line, state);
   deck::validateDeck(state, virtualPath);
+  deck::resolveNewtonDefaults(state.spec);
   return std::move(state.spec);
 }
 

@@ -1,6 +1,7 @@
 // The solve block: `solve` ... `end`, sticky `newton`/`cutback` settings and `steps` phases.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -75,8 +76,9 @@ std::vector<ValueDecl> newtonParameters() {
           numberValue("diverge", "the step fails when |R_k| exceeds this multiple of |R_0|")
               .withRange(Range::greaterThan(1))
               .withDefault(defaultText(defaults.divergenceFactor)),
-          boolValue("line_search", "backtracking line search along the Newton direction")
-              .withDefault(defaultText(defaults.lineSearch)),
+          boolValue("line_search",
+                    "backtracking line search along the Newton direction; when not given: yes "
+                    "in a deck with an enforcement=augmented contact pair, otherwise no"),
           enumValue("predictor", choiceNames(newtonPredictors()),
                     "first iterate of a step: the converged state with the prescribed increment "
                     "(prescribed), or plus the last step's increment scaled to dt (extrapolate)")
@@ -128,12 +130,31 @@ void applyNewtonParameters(const ParsedLine& line, NewtonSpec& newton) {
     newton.criterion = choiceValue(convergenceCriteria(), line.text("converge"));
   }
   if (use("diverge")) newton.divergenceFactor = line.number("diverge");
-  if (use("line_search")) newton.lineSearch = line.flag("line_search");
+  if (use("line_search")) {
+    newton.lineSearch = line.flag("line_search");
+    newton.lineSearchChosen = true;
+  }
   if (use("predictor")) {
     newton.predictor = choiceValue(newtonPredictors(), line.text("predictor"));
   }
   if (use("penalty_continuation")) {
     newton.penaltyContinuation = line.flag("penalty_continuation");
+  }
+}
+
+// The augmented Lagrangian's re-solves start from a converged state whose contact forces the
+// multiplier update has just moved by eps g; at penalties from 100 times the automatic one plain
+// Newton cycled there and every step needed line-search retries and cut-backs (the small block of
+// test_augmented_lagrangian.cpp at 100 eps_ref: 282 Newton iterations, +210 discarded, 11
+// cut-backs; with the line search from the start 56, none), and the line search costs nothing at
+// softer penalties (docs/verification/augmented_lagrangian.md).
+void resolveNewtonDefaults(ProblemSpec& spec) {
+  const bool augmented =
+      std::any_of(spec.contacts.begin(), spec.contacts.end(), [](const ContactSpec& contact) {
+        return contact.enforcement == ContactSpec::Enforcement::Augmented;
+      });
+  for (PhaseSpec& phase : spec.phases) {
+    if (!phase.newton.lineSearchChosen) phase.newton.lineSearch = augmented;
   }
 }
 

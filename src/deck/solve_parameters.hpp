@@ -22,5 +22,8 @@ std::vector<ValueDecl> phaseOnlyParameters();
 // `steps` line.
 void applyNewtonParameters(const ParsedLine& line, NewtonSpec& newton);
 void applyCutbackParameters(const ParsedLine& line, CutbackSpec& cutback);
+// Defaults that depend on the whole deck, once it is read: the line search of the phases that
+// do not set it (on with an augmented contact pair).
+void resolveNewtonDefaults(ProblemSpec& spec);
 
 }  // namespace cc::deck

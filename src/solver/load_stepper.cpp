@@ -158,6 +158,7 @@ bool LoadStepper::runPhase(const PhaseSpec& phase, double phaseStart, PhaseRun& 
     const double targetTime = phaseStart + target * phase.dt;
     NewtonStep step{run.step + 1, control.attempts++, targetTime, run.time};
     step.predictedIncrement = predictedIncrement(phase, targetTime, run);
+    NewtonSpec solvedWith = phase.newton;  // the re-solves of augmentStep use the same
     NewtonResult result = newton_->solve(step, phase.newton, run.displacement);
     if (result.status == NewtonResult::Status::Failed && result.failure == FailureKind::Diverged &&
         !phase.newton.lineSearch) {
@@ -167,9 +168,8 @@ bool LoadStepper::runPhase(const PhaseSpec& phase, double phaseStart, PhaseRun& 
       ++summary_.lineSearchRetries;
       const NewtonStep retry = retryStep(step, result, (target - position) * phase.dt,
                                          "retrying the step with line search: ", control, run);
-      NewtonSpec withLineSearch = phase.newton;
-      withLineSearch.lineSearch = true;
-      result = newton_->solve(retry, withLineSearch, run.displacement);
+      solvedWith.lineSearch = true;
+      result = newton_->solve(retry, solvedWith, run.displacement);
     }
     if (result.status == NewtonResult::Status::Failed && result.failure == FailureKind::Diverged &&
         phase.newton.penaltyContinuation && problem_.stiffestPenaltyRatio() > kContinuationRatio) {
@@ -183,7 +183,7 @@ bool LoadStepper::runPhase(const PhaseSpec& phase, double phaseStart, PhaseRun& 
       result = solveByPenaltyContinuation(phase.newton, retry, run);
     }
     if (result.status == NewtonResult::Status::Converged) {
-      result = augmentStep(phase, step, result, run);
+      result = augmentStep(solvedWith, step, result, run);
     }
     if (result.status == NewtonResult::Status::Converged) {
       position = target;
@@ -255,8 +255,8 @@ NewtonResult LoadStepper::solveByPenaltyContinuation(const NewtonSpec& spec, con
     iterations += result.iterations;
     result.iterations = iterations;
     if (result.status != NewtonResult::Status::Converged) break;
-    stage.predictedIncrement = nullptr;  // the next solve starts from this one's solution
-    if (k == 0) {
+    stage.predictedIncrement = nullptr;           // the next solve starts from this one's solution
+    if (k == 0 && step.referenceResidual == 0) {  // an augmented re-solve keeps its step's
       stage.referenceResidual = newton_->firstResidual();
       stage.referenceEnergy = newton_->firstEnergy();
     }
@@ -269,9 +269,13 @@ NewtonResult LoadStepper::solveByPenaltyContinuation(const NewtonSpec& spec, con
 // norms measured against the first solve's (the re-solve starts near equilibrium, and its own
 // first residual would set a tolerance below round-off); the iterations of all solves count
 // for the step. Without multipliers augment() converges at once and this is a
-// no-op.
-NewtonResult LoadStepper::augmentStep(const PhaseSpec& phase, const NewtonStep& step,
-                                      NewtonResult result, PhaseRun& run) {
+// no-op. A step that needed the line search keeps it for its re-solves, and a re-solve that
+// diverges without it is retried with it from where it started: each update moves the contact
+// forces by eps g, and at a stiff penalty the re-solve then cycles as the step's first solve did
+// (the small block at 100 eps_ref: a re-solve whose residual grew to 19 times its first value
+// threw away the step's converged solves and cut the step back; 11 cut-backs in 5 steps).
+NewtonResult LoadStepper::augmentStep(NewtonSpec spec, const NewtonStep& step, NewtonResult result,
+                                      PhaseRun& run) {
   NewtonStep resolve = step;
   resolve.predictedIncrement = nullptr;  // the re-solve starts from the step's own solution
   resolve.referenceResidual = newton_->firstResidual();
@@ -285,7 +289,28 @@ NewtonResult LoadStepper::augmentStep(const PhaseSpec& phase, const NewtonStep& 
       return {NewtonResult::Status::Failed, result.iterations, FailureKind::Diverged,
               augmentation.message};
     }
-    NewtonResult next = newton_->solve(resolve, phase.newton, run.displacement);
+    const Eigen::VectorXd start = run.displacement;
+    NewtonResult next = newton_->solve(resolve, spec, run.displacement);
+    if (next.status == NewtonResult::Status::Failed && next.failure == FailureKind::Diverged &&
+        !spec.lineSearch) {
+      ++summary_.lineSearchRetries;
+      summary_.discardedIterations += next.iterations;
+      observer_.note(fmt::format("step {}: retrying the augmented re-solve with line search: {}",
+                                 step.step, next.message));
+      run.displacement = start;
+      spec.lineSearch = true;
+      next = newton_->solve(resolve, spec, run.displacement);
+    }
+    if (next.status == NewtonResult::Status::Failed && next.failure == FailureKind::Diverged &&
+        spec.penaltyContinuation && problem_.stiffestPenaltyRatio() > kContinuationRatio) {
+      ++summary_.continuationRetries;
+      summary_.discardedIterations += next.iterations;
+      observer_.note(
+          fmt::format("step {}: retrying the augmented re-solve by penalty continuation: {}",
+                      step.step, next.message));
+      run.displacement = start;
+      next = solveByPenaltyContinuation(spec, resolve, run);
+    }
     next.iterations += result.iterations;
     if (next.status != NewtonResult::Status::Converged) return next;
     result = next;

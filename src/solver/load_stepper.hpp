@@ -87,7 +87,7 @@ class LoadStepper {
   NewtonResult solveByPenaltyContinuation(const NewtonSpec& spec, const NewtonStep& step,
                                           PhaseRun& run);
   // Re-solves a converged step while the problem updates contact multipliers.
-  NewtonResult augmentStep(const PhaseSpec& phase, const NewtonStep& step, NewtonResult result,
+  NewtonResult augmentStep(NewtonSpec spec, const NewtonStep& step, NewtonResult result,
                            PhaseRun& run);
   // Each returns false when the run stops (summary_ says why).
   bool runPhase(const PhaseSpec& phase, double phaseStart, PhaseRun& run);

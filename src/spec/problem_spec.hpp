@@ -155,6 +155,10 @@ struct NewtonSpec {
   Criterion criterion = Criterion::Energy;
   double divergenceFactor = 1e6;  // ||R_k|| > factor * ||R_0|| counts as divergence
   bool lineSearch = false;
+  // Whether the deck set line_search. If not, a deck with an enforcement=augmented contact pair
+  // gets the line search (deck/solve_keywords.cpp, resolveNewtonDefaults): each Uzawa update
+  // moves the contact forces by eps g, and at a stiff penalty plain Newton then cycles.
+  bool lineSearchChosen = false;
   // The first iterate of a step (issue 14). Prescribed: the converged state, the prescribed
   // increment entering linearly (K_fp du_p, FEAP's predictor; the paper decks' counts).
   // Extrapolate: the converged state plus the last converged step's increment scaled to this

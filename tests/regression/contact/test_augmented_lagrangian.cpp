@@ -217,6 +217,38 @@ TEST(AugmentedLagrangian, APeriodTwoResidualCycleGoesToTheLineSearchAtOnce) {
   EXPECT_LT(stiff.summary.discardedIterations, 120);              // before: 4 retries after 30 each
 }
 
+// The stiff end of the augmented Lagrangian without retries (issue 16, part 3). At 100 times the
+// automatic penalty plain Newton cycled in the press and in the re-solves after each multiplier
+// update (an update moves the contact forces by eps g); a re-solve that failed threw the step's
+// converged solves away and cut the step back: 282 Newton iterations (+210 discarded), 7
+// line-search retries, 11 cut-backs, 50 steps for the deck's 5. A deck with an augmented pair now
+// has the line search unless it says line_search=no (deck/solve_keywords.cpp), and a re-solve
+// that diverges without it is retried with it from where it started (load_stepper.cpp). Measured:
+// 78 and 56 Newton iterations at 10 and 100 eps_ref, no retry, no cut-back; with line_search=no
+// at 100, the re-solves' retries keep every step (2 retries, 0 cut-backs). The press forces are
+// the constraint's within the two-decade test's bound.
+TEST(AugmentedLagrangian, AStiffAugmentedPenaltyNeedsNoRetries) {
+  const DeckRun reference = runSmallBlock("enforcement=penalty");
+  const DeckRun stiff10 = runSmallBlock("enforcement=augmented eps_scale=10");
+  const DeckRun stiff100 = runSmallBlock("enforcement=augmented eps_scale=100");
+  const DeckRun plain100 = runSmallBlock("enforcement=augmented eps_scale=100", "line_search=no");
+  for (const DeckRun* run : {&reference, &stiff10, &stiff100, &plain100})
+    ASSERT_EQ(run->summary.outcome, RunSummary::Outcome::Completed);
+  for (const DeckRun* run : {&stiff10, &stiff100}) {
+    EXPECT_EQ(run->summary.lineSearchRetries, 0);
+    EXPECT_EQ(run->summary.continuationRetries, 0);
+    EXPECT_EQ(run->summary.totalCutbacks, 0);
+    EXPECT_EQ(run->summary.discardedIterations, 0);
+    EXPECT_EQ(run->steps.size(), 5u);
+  }
+  EXPECT_GE(plain100.summary.lineSearchRetries, 1);    // plain Newton still cycles there
+  EXPECT_EQ(plain100.summary.totalCutbacks, 0);        // but no converged solve is thrown away
+  EXPECT_EQ(plain100.summary.continuationRetries, 0);  // and the line search is enough
+  const double bound = 2 * 1e-3 * (1 - pressForce(reference) / pressForce(stiff10));
+  EXPECT_LE(std::abs(pressForce(stiff100) / pressForce(stiff10) - 1), bound);
+  EXPECT_LE(std::abs(pressForce(plain100) / pressForce(stiff10) - 1), bound);
+}
+
 // A penalty 1e4 times the automatic one (eps = 4.2e9 against E = 2.1e4): Newton's region of
 // convergence shrinks like 1 / eps, and the press failed at every step size, with and without
 // line search (the points at the edge of the contact zone switched open/closed). The retry by
