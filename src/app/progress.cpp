@@ -26,8 +26,8 @@ void printOut(const std::string& text) {
                   std::strerror(errno)));
 }
 
-Progress::Progress(int plannedSteps, bool quiet, bool newtonLog)
-    : plannedSteps_(plannedSteps),
+Progress::Progress(double endTime, bool quiet, bool newtonLog)
+    : endTime_(endTime),
       quiet_(quiet),
       newtonLog_(newtonLog),
       terminal_(isatty(fileno(stdout)) != 0) {}
@@ -48,17 +48,17 @@ void Progress::iteration(const IterationRecord& r) {
     return;
   }
   if (quiet_ || !terminal_) return;
-  printLive(fmt::format("step {}/{}  t = {:.6g}  iteration {}  |R|/|R0| = {:.2e}  energy {:.2e}",
-                        r.step, plannedSteps_, r.time, r.iteration, r.relativeResidual,
-                        r.relativeEnergy));
+  printLive(
+      fmt::format("step {}  t = {:.6g} of {:.6g}  iteration {}  |R|/|R0| = {:.2e}  energy {:.2e}",
+                  r.step, r.time, endTime_, r.iteration, r.relativeResidual, r.relativeEnergy));
 }
 
 void Progress::stepConverged(int step, double time, int iterations, int cutbacks) {
   if (quiet_) return;
-  const std::string text =
-      fmt::format("step {}/{}  t = {:.6g}  {} iterations{}  |R|/|R0| = {:.2e}", step, plannedSteps_,
-                  time, iterations, cutbacks ? fmt::format(" after {} cut-backs", cutbacks) : "",
-                  convergedRelativeResidual_);
+  const std::string text = fmt::format(
+      "step {}  t = {:.6g} of {:.6g}  {} iterations{}  |R|/|R0| = {:.2e}", step, time, endTime_,
+      iterations, cutbacks ? fmt::format(" after {} cut-backs", cutbacks) : "",
+      convergedRelativeResidual_);
   if (terminal_) {
     printLive(text);
   } else {

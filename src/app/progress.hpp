@@ -1,4 +1,4 @@
-// Progress output of a run: on a terminal one live line (step k of n, time, iteration,
+// Progress output of a run: on a terminal one live line (step k, time of the end time, iteration,
 // residual) rewritten in place; in a pipe or CI one plain line per converged step.
 #pragma once
 
@@ -18,7 +18,9 @@ void printErr(const std::string& text);
 
 class Progress {
  public:
-  Progress(int plannedSteps, bool quiet, bool newtonLog = false);
+  // endTime: where the last phase ends. Progress is shown as time of it, not as a step count:
+  // cut-backs add steps (the plan's "step 6/5" read as a miscount).
+  Progress(double endTime, bool quiet, bool newtonLog = false);
   void iteration(const IterationRecord& record);
   // The step's final |R|/|R0| for the next stepConverged line (the load stepper reports it
   // just before every converged step).
@@ -32,7 +34,7 @@ class Progress {
 
  private:
   void printLive(const std::string& text);
-  int plannedSteps_;
+  double endTime_;
   bool quiet_;
   bool newtonLog_;
   bool terminal_;

@@ -188,10 +188,10 @@ TangentDumpRequest parseDumpRequest(const std::string& text) {
   return request;
 }
 
-int plannedSteps(const ProblemSpec& spec) {
-  int steps = 0;
-  for (const PhaseSpec& phase : spec.phases) steps += phase.steps;
-  return steps;
+double endTime(const ProblemSpec& spec) {
+  double time = 0;
+  for (const PhaseSpec& phase : spec.phases) time += phase.steps * phase.dt;
+  return time;
 }
 
 }  // namespace
@@ -428,7 +428,7 @@ int runCommand(const RunOptions& options) {
       return code;
     }
   }
-  Progress progress(plannedSteps(spec), quiet, options.newtonLog && writes);
+  Progress progress(endTime(spec), quiet, options.newtonLog && writes);
   RunObserver observer(*model, writer, writes, progress, selection.stress, group,
                        writes ? references.get() : nullptr);
   stopSignal.store(false);

@@ -40,7 +40,7 @@ TOLERANCE = 1e-8  # serial against distributed: different summation order and so
 EXIT = {"ok": 0, "input": 2, "interrupted": 4}  # `covcontact --help`
 CONTACT_LOG = re.compile(r"iteration (\d+) .*contact: (\d+) active, (\d+) changed state, "
                          r"(\d+) changed segment")
-CONVERGED_STEP = re.compile(r"step (\d+)/\d+\s+t = \S+\s+\d+ iterations")
+CONVERGED_STEP = re.compile(r"step (\d+)\s+t = \S+ of \S+\s+\d+ iterations")
 
 
 def fail(message):

@@ -23,13 +23,18 @@ if run.returncode != 0:
 iteration = re.compile(r"^  step (\d+) attempt (\d+) iteration (\d+) .* contact: (\d+) active, "
                        r"(\d+) changed state, (\d+) changed segment$")
 last = {}
+step_lines = []
 for line in run.stdout.splitlines():
     m = iteration.match(line)
     if m:
         last[int(m[1])] = int(m[3])
-    m = re.match(r"^step (\d+)/\d+ .* (\d+) iterations", line)
+    m = re.match(r"^step (\d+)  t = \S+ of \S+  (\d+) iterations", line)
+    if m:
+        step_lines.append(int(m[1]))
     if m and last.get(int(m[1])) != int(m[2]):
         failures.append(f"step {m[1]}: {m[2]} iterations, log shows {last.get(int(m[1]))}")
+if step_lines != [1, 2]:
+    failures.append(f"converged-step lines for steps {step_lines}, expected [1, 2]")
 if sorted(last) != [1, 2]:
     failures.append(f"iteration lines for steps {sorted(last)}, expected [1, 2]")
 checks = re.findall(r"tangent check: step 2 iteration 3 direction (\w+) h = ([0-9.e+-]+) \|u\|: "
