@@ -231,8 +231,18 @@ int main(int argc, char** argv) {
       run.commandLine = joinArguments(argc, argv);
       return cc::app::runCommand(run);
     }
-    // check, compare and solve-dump work on one process: under mpirun rank 0 does the work and
-    // the others leave at once (otherwise the output came once per process).
+    // solve-dump's PETSc solvers would start on all the launched processes' communicator while
+    // only one process solves: under mpirun it waited for the others for ever.
+    if (*solveDumpCommand && cc::launchedProcesses() > 1) {
+      // The other processes leave quietly: a non-zero exit of theirs had mpirun end process 0
+      // before it printed why.
+      if (cc::launchedRank() != 0) return cc::kExitOk;
+      std::cerr << "covcontact solve-dump: solves a dump on one process; run it without mpirun "
+                   "(or with -np 1)\n";
+      return cc::kExitUsage;
+    }
+    // check and compare work on one process: under mpirun rank 0 does the work and the others
+    // leave at once (otherwise the output came once per process).
     if (cc::launchedProcesses() > 1 && cc::launchedRank() != 0) return cc::kExitOk;
     if (*solveDumpCommand) return cc::app::solveDumpCommand(solveDump);
     if (*checkCommand) {

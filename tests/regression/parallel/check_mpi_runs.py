@@ -37,7 +37,7 @@ import numpy as np
 
 TIMEOUT_S = 240  # one command on a loaded 2-core machine
 TOLERANCE = 1e-8  # serial against distributed: different summation order and solver only
-EXIT = {"ok": 0, "input": 2, "interrupted": 4}  # `covcontact --help`
+EXIT = {"ok": 0, "usage": 1, "input": 2, "interrupted": 4}  # `covcontact --help`
 CONTACT_LOG = re.compile(r"iteration (\d+) .*contact: (\d+) active, (\d+) changed state, "
                          r"(\d+) changed segment")
 CONVERGED_STEP = re.compile(r"step (\d+)\s+t = \S+ of \S+\s+\d+ iterations")
@@ -334,6 +334,13 @@ def errors_case(args):
     check((two.stdout + two.stderr).count(message) == 1,
           f"the deck error is not reported exactly once:\n{two.stdout}{two.stderr}")
     print(f"deck error: exit {two.returncode} on 2 processes, reported once: {message}")
+
+    # solve-dump solves on one process: under mpirun its PETSc solver waited for the processes
+    # that had left (a hang); it now refuses before it reads the directory.
+    dump = run(args, 2, "solve-dump", args.scratch, "--solver", "amg")
+    check(dump.returncode == EXIT["usage"] and "one process" in dump.stderr,
+          f"solve-dump on 2 processes: exit {dump.returncode}\n{dump.stderr}")
+    print("solve-dump on 2 processes: refused (exit 1) instead of waiting")
 
     deck = os.path.join(args.source, "input/stress/inverted_element_persistent.deck")
     serial = run(args, 1, "run", deck, "-o", "inverted1.h5")
