@@ -3,6 +3,7 @@
 // the interrupted one left it after its last commit.
 #include <fmt/format.h>
 
+#include <cmath>
 #include <stdexcept>
 
 #include "contact/contact_pair.hpp"
@@ -25,7 +26,14 @@ enum HistoryRow : int {
   kAccumulatedSlip = 16,
   kSearchSegment = 17,  // the segment the next search walk starts from
   kSearchXi = 18,       // 2 rows, its parameter
-  kRowCount = 20,
+  // Augmented Lagrangian: the committed normal multiplier, the next step's first guess, and the
+  // pair's penalties, which aug_grow may have raised (the same in every column). Tables written
+  // before these rows existed have kLegacyRowCount rows: multipliers 0, the deck's penalties.
+  kMultiplierNormal = 20,
+  kPenaltyNormal = 21,
+  kPenaltyTangential = 22,
+  kRowCount = 23,
+  kLegacyRowCount = 20,
 };
 static_assert(kRowCount == ContactPair::kHistoryRows);
 
@@ -58,6 +66,9 @@ Eigen::MatrixXd ContactPair::exportHistory() const {
     column[kAccumulatedSlip] = h.accumulatedSlip;
     column[kSearchSegment] = point.segment;
     column.segment<2>(kSearchXi) = point.xi;
+    column[kMultiplierNormal] = point.committedMultiplierNormal;
+    column[kPenaltyNormal] = builtPenaltyNormal_;
+    column[kPenaltyTangential] = builtPenaltyTangential_;
   }
   return table;
 }
@@ -71,11 +82,13 @@ void ContactPair::importHistory(const Eigen::MatrixXd& table) {
         "are rebuilt every step); rerun it from the start",
         config_.name));
   }
-  if (table.rows() != kHistoryRows || table.cols() != pointCount()) {
+  const bool legacy = table.rows() == kLegacyRowCount;
+  if ((table.rows() != kHistoryRows && !legacy) || table.cols() != pointCount()) {
     throw std::invalid_argument(fmt::format(
         "contact pair '{}': history table is {} x {}, expected {} x {} (one column per point)",
         config_.name, table.rows(), table.cols(), kHistoryRows, pointCount()));
   }
+  if (!legacy) importAugmentation(table);
   const bool segmentBased = searchesMasterSegments(config_.kind);
   for (int i = 0; i < pointCount(); ++i) {
     const auto column = table.col(i);
@@ -111,6 +124,34 @@ void ContactPair::importHistory(const Eigen::MatrixXd& table) {
   historyInitialized_ = true;
   tracker_.invalidateGrid();
   ++topologyVersion_;
+}
+
+// The rows of the augmented Lagrangian (kMultiplierNormal ...): a restarted run continues with the
+// multipliers and penalties the interrupted one had, so that it ends where that one ended.
+void ContactPair::importAugmentation(const Eigen::MatrixXd& table) {
+  for (int i = 0; i < pointCount(); ++i) {
+    const double multiplier = table(kMultiplierNormal, i);
+    if (!std::isfinite(multiplier) || multiplier > 0) {
+      throw std::invalid_argument(
+          fmt::format("contact pair '{}', point {}: invalid normal multiplier {} in the history "
+                      "(a finite value <= 0 expected)",
+                      config_.name, i, multiplier));
+    }
+    points_[i].committedMultiplierNormal = multiplier;
+    points_[i].multiplierNormal = multiplier;
+  }
+  // Only aug_grow changes a pair's penalties, and only upwards: a stored penalty below the deck's
+  // means the deck was edited before the restart, and the deck's then stands.
+  if (pointCount() == 0 || !config_.augmented || !config_.growPenalty) return;
+  const double normal = table(kPenaltyNormal, 0), tangential = table(kPenaltyTangential, 0);
+  if (!(normal > 0) || !std::isfinite(normal) || !(tangential >= 0) || !std::isfinite(tangential)) {
+    throw std::invalid_argument(
+        fmt::format("contact pair '{}': invalid penalties eps_n = {}, eps_t = {} in the history",
+                    config_.name, normal, tangential));
+  }
+  if (normal < builtPenaltyNormal_ || tangential < builtPenaltyTangential_) return;
+  builtPenaltyNormal_ = config_.law.penaltyNormal = normal;
+  builtPenaltyTangential_ = config_.law.penaltyTangential = tangential;
 }
 
 }  // namespace cc::contact

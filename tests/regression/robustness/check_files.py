@@ -308,7 +308,7 @@ def start_long_run(args, decks, results, deck_text=None):
 
 def wait_for_progress_line(process, step):
     for line in process.stdout:
-        if line.startswith(f"step {step}/"):
+        if line.startswith(f"step {step}  t = "):
             return
     fail(f"the run ended before step {step}")
 

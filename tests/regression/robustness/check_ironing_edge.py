@@ -26,7 +26,7 @@ def run(name, contact_options, steps):
     r = subprocess.run([args.covcontact, "run", "--threads", "1", deck, "-o",
                         os.path.join(args.scratch, name + ".h5")],
                        capture_output=True, text=True, timeout=280)
-    steps_done = [int(m) for m in re.findall(r"^step \d+/\d+ .* (\d+) iterations", r.stdout, re.M)]
+    steps_done = [int(m) for m in re.findall(r"^step \d+  t = \S+ of \S+  (\d+) iterations", r.stdout, re.M)]
     return r, steps_done
 
 

@@ -29,7 +29,7 @@ failures = []
 total = 0
 for step in range(41, 46):
     changed = re.search(rf"step {step} attempt 0 iteration 2 .* (\d+) changed state", r.stdout)
-    iterations = re.search(rf"^step {step}/45 .* (\d+) iterations", r.stdout, re.M)
+    iterations = re.search(rf"^step {step}  t = \S+ of \S+  (\d+) iterations", r.stdout, re.M)
     if not changed or not iterations:
         failures.append(f"step {step}: no iteration-2 log line or no step line")
         continue

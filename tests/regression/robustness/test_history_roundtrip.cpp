@@ -82,6 +82,52 @@ TEST(History, SavedElementAndContactHistoryRestoresExactlyIntoAFreshModel) {
             1e-10 * observer.lastContact[0].totalForce.norm());
 }
 
+// An augmented-Lagrangian run (issue 16, part 3) carries state beyond the point history: the
+// committed normal multipliers (the next step's first guess) and the penalties aug_grow has
+// raised. Before they were restart data, a continued run began again from zero multipliers and
+// the deck's penalty, and ended elsewhere within the augmentation's tolerance. The small block at
+// eps_ref / 100 raises its penalty in step 1 (and again in step 2): continued from step 1 it
+// must end exactly where the uninterrupted run ends, with the same penalty.
+TEST(History, AnAugmentedRunContinuesWithItsMultipliersAndRaisedPenalty) {
+  const std::string path =
+      std::string(COVCONTACT_SOURCE_DIR) + "/input/verification/contact/augmented_block.deck";
+  const std::string text =
+      replaceOnce(readText(path), "contact sts master=block_bottom slave=base_top mu=0.3",
+                  "contact sts master=block_bottom slave=base_top mu=0.3 enforcement=augmented "
+                  "eps_scale=0.01");
+  const ProblemSpec spec = parseDeckText(text, path);
+  const std::unique_ptr<Model> model = buildModel(spec);
+  const int saveAt = 1;
+  SavingObserver observer(*model, saveAt);
+  LoadStepper stepper(*model, observer, spec.phases);
+  observer.attach(stepper);
+  ASSERT_EQ(stepper.run().outcome, RunSummary::Outcome::Completed);
+  const double deckPenalty = model->contactPairs()[0]->config().referencePenalty * 0.01;
+  const Eigen::MatrixXd& table = observer.saved.contactHistory[0].second;
+  ASSERT_EQ(table.rows(), contact::ContactPair::kHistoryRows);
+  EXPECT_GT(table.row(21).minCoeff(), 5 * deckPenalty);  // raised in step 1: the stored eps_n
+  EXPECT_LT(table.row(20).minCoeff(), 0.0);              // some point carries a multiplier
+
+  const std::unique_ptr<Model> fresh = buildModel(spec);
+  fresh->restoreHistory(observer.saved);
+  EXPECT_EQ(fresh->saveHistory().contactHistory[0].second, table);
+  SavingObserver continued(*fresh, -1);
+  LoadStepper restarted(*fresh, continued, spec.phases);
+  continued.attach(restarted);
+  StartState start;
+  start.step = saveAt;
+  start.time = observer.savedTime;
+  start.displacement = observer.saved.displacement;
+  start.stepSize = {observer.saved.stepFraction, observer.saved.easySteps};
+  ASSERT_EQ(restarted.run(start).outcome, RunSummary::Outcome::Completed);
+  EXPECT_EQ(continued.lastStep, observer.lastStep);
+  EXPECT_LT((continued.lastDisplacement - observer.lastDisplacement).cwiseAbs().maxCoeff(),
+            1e-12 * observer.lastDisplacement.cwiseAbs().maxCoeff());
+  EXPECT_EQ(continued.lastContact[0].penaltyNormal, observer.lastContact[0].penaltyNormal);
+  EXPECT_LT((continued.lastContact[0].totalForce - observer.lastContact[0].totalForce).norm(),
+            1e-10 * observer.lastContact[0].totalForce.norm());
+}
+
 TEST(History, AHistoryThatDoesNotFitTheModelIsRefusedWithItsName) {
   const ProblemSpec spec = parseDeck(stressDeck("slide_off_edge"));
   const std::unique_ptr<Model> model = buildModel(spec);
@@ -103,6 +149,13 @@ TEST(History, AHistoryThatDoesNotFitTheModelIsRefusedWithItsName) {
   RestartRecord badSegment = history;
   badSegment.contactHistory[0].second(1, 0) = 1e6;  // row 1: the master segment
   EXPECT_THROW(model->restoreHistory(badSegment), std::invalid_argument);
+  RestartRecord badMultiplier = history;
+  badMultiplier.contactHistory[0].second(20, 0) = 1.0;  // row 20: a normal multiplier, <= 0
+  EXPECT_THROW(model->restoreHistory(badMultiplier), std::invalid_argument);
+  // Restart data written before the multiplier and penalty rows (20 rows) still continue.
+  RestartRecord legacy = history;
+  legacy.contactHistory[0].second.conservativeResize(20, Eigen::NoChange);
+  EXPECT_NO_THROW(model->restoreHistory(legacy));
   EXPECT_NO_THROW(model->restoreHistory(history));
 }
 
