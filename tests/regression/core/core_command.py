@@ -44,12 +44,12 @@ def run(command, cwd):
 
 
 def step_lines(stdout):
-    """The plain progress lines `step k/n  t = ...  N iterations ...` as {k: iterations}."""
+    """The plain progress lines `step k  t = T of END  N iterations ...` as {k: iterations}."""
     steps = {}
     for line in stdout.splitlines():
         words = line.split()
-        if len(words) >= 7 and words[0] == "step" and words[6] == "iterations":
-            steps[int(words[1].split("/")[0])] = int(words[5])
+        if len(words) >= 9 and words[0] == "step" and words[5] == "of" and words[8] == "iterations":
+            steps[int(words[1])] = int(words[7])
     return steps
 
 
