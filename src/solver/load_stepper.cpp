@@ -291,24 +291,26 @@ NewtonResult LoadStepper::augmentStep(NewtonSpec spec, const NewtonStep& step, N
     }
     const Eigen::VectorXd start = run.displacement;
     NewtonResult next = newton_->solve(resolve, spec, run.displacement);
-    if (next.status == NewtonResult::Status::Failed && next.failure == FailureKind::Diverged &&
-        !spec.lineSearch) {
-      ++summary_.lineSearchRetries;
+    auto diverged = [&next] {
+      return next.status == NewtonResult::Status::Failed && next.failure == FailureKind::Diverged;
+    };
+    // Counts and logs the failed re-solve and puts the displacement back where it started (the
+    // multipliers stay: no restoreStep here).
+    auto retryFromStart = [&](int& retries, const char* how) {
+      ++retries;
       summary_.discardedIterations += next.iterations;
-      observer_.note(fmt::format("step {}: retrying the augmented re-solve with line search: {}",
-                                 step.step, next.message));
+      observer_.note(fmt::format("step {}: retrying the augmented re-solve {}: {}", step.step, how,
+                                 next.message));
       run.displacement = start;
+    };
+    if (diverged() && !spec.lineSearch) {
+      retryFromStart(summary_.lineSearchRetries, "with line search");
       spec.lineSearch = true;
       next = newton_->solve(resolve, spec, run.displacement);
     }
-    if (next.status == NewtonResult::Status::Failed && next.failure == FailureKind::Diverged &&
-        spec.penaltyContinuation && problem_.stiffestPenaltyRatio() > kContinuationRatio) {
-      ++summary_.continuationRetries;
-      summary_.discardedIterations += next.iterations;
-      observer_.note(
-          fmt::format("step {}: retrying the augmented re-solve by penalty continuation: {}",
-                      step.step, next.message));
-      run.displacement = start;
+    if (diverged() && spec.penaltyContinuation &&
+        problem_.stiffestPenaltyRatio() > kContinuationRatio) {
+      retryFromStart(summary_.continuationRetries, "by penalty continuation");
       next = solveByPenaltyContinuation(spec, resolve, run);
     }
     next.iterations += result.iterations;
