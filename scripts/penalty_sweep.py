@@ -17,6 +17,9 @@ Cases:
 
 Usage: scripts/penalty_sweep.py --covcontact build/src/app/covcontact --work /tmp/sweep
                                 [--cases block,6.1b] [--scales 0.01,0.1,1,10,100,1000,10000]
+                                [--newton "aug_inner=0.1"]
+--newton adds options to each deck's newton line (one is added after `solve` if there is none),
+e.g. the augmented Lagrangian's inexact re-solves; the file names then carry a tag of them.
 Runs one thread each, in sequence; the deck copies and results go to --work.
 """
 import argparse
@@ -68,6 +71,19 @@ def deck_text(case, options, hertz_m):
     raise SystemExit(f"unknown case {case}")
 
 
+def with_newton_options(text, options):
+    """The deck text with `options` appended to its newton line, or on a new one after solve."""
+    if not options:
+        return text
+    text, count = re.subn(r"^(\s*newton\b.*)$", rf"\1 {options}", text, count=1,
+                          flags=re.MULTILINE)
+    if count == 0:
+        text, count = re.subn(r"^solve\s*$", f"solve\n  newton {options}", text, count=1,
+                              flags=re.MULTILINE)
+    assert count == 1, "no solve block to add newton options to"
+    return text
+
+
 def set_reaction(step, name):
     names = [n.decode() if isinstance(n, bytes) else n
              for n in step["set_reactions"].attrs["names"]]
@@ -111,12 +127,14 @@ def main():
     parser.add_argument("--enforcements", default="penalty,augmented")
     parser.add_argument("--hertz-m", type=int, default=6)
     parser.add_argument("--timeout", type=float, default=3600)
+    parser.add_argument("--newton", default="", help="options added to the decks' newton line")
     args = parser.parse_args()
     os.makedirs(args.work, exist_ok=True)
     prepare(args.work)
     stamp = time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())
     print(f"covcontact {os.path.abspath(args.covcontact)}, {stamp}, "
-          f"load average {os.getloadavg()[0]:.1f}")
+          f"load average {os.getloadavg()[0]:.1f}" +
+          (f", newton options: {args.newton}" if args.newton else ""))
     for case in args.cases.split(","):
         print(f"\n### {case}\n")
         print("| scale | enforcement | outcome | Newton its (+discarded) | line-search / continuation "
@@ -127,7 +145,9 @@ def main():
             for enforcement in args.enforcements.split(","):
                 options = f"enforcement={enforcement} eps_scale={scale}"
                 text, folder, set_name, (pair, depth) = deck_text(case, options, args.hertz_m)
-                name = f"{case.replace('.', '')}_{enforcement}_{scale}"
+                text = with_newton_options(text, args.newton)
+                tag = re.sub(r"[^A-Za-z0-9.]+", "_", args.newton).strip("_")
+                name = f"{case.replace('.', '')}_{enforcement}_{scale}" + (f"_{tag}" if tag else "")
                 deck = os.path.join(args.work, *folder, name + ".deck")
                 with open(deck, "w") as stream:
                     stream.write(text)

@@ -87,7 +87,14 @@ std::vector<ValueDecl> newtonParameters() {
                     "a step that fails with and without line search at a contact penalty more "
                     "than 100 times its automatic value is retried by solves at penalties growing "
                     "10-fold from the automatic one")
-              .withDefault(defaultText(defaults.penaltyContinuation))};
+              .withDefault(defaultText(defaults.penaltyContinuation)),
+          numberValue("aug_inner",
+                      "augmented-Lagrangian contact: a re-solve after a multiplier update stops "
+                      "once its residual has fallen to this fraction of its first, so that the "
+                      "updates interleave with Newton iterations; the step is solved to the full "
+                      "criterion once the update rule is met. 0: every re-solve converges fully")
+              .withRange(Range::between(0, true, 1, false))
+              .withDefault(defaultText(defaults.augmentedInnerTolerance))};
 }
 
 std::vector<ValueDecl> cutbackParameters() {
@@ -140,6 +147,7 @@ void applyNewtonParameters(const ParsedLine& line, NewtonSpec& newton) {
   if (use("penalty_continuation")) {
     newton.penaltyContinuation = line.flag("penalty_continuation");
   }
+  if (use("aug_inner")) newton.augmentedInnerTolerance = line.number("aug_inner");
 }
 
 // The augmented Lagrangian's re-solves start from a converged state whose contact forces the

@@ -280,17 +280,30 @@ NewtonResult LoadStepper::augmentStep(NewtonSpec spec, const NewtonStep& step, N
   resolve.predictedIncrement = nullptr;  // the re-solve starts from the step's own solution
   resolve.referenceResidual = newton_->firstResidual();
   resolve.referenceEnergy = newton_->firstEnergy();
+  // aug_inner: an inexact re-solve, measured against its own first residual (the update's
+  // disturbance), stops at that fraction of it; its iterate only feeds the next update.
+  NewtonStep inexactResolve = resolve;
+  inexactResolve.referenceResidual = inexactResolve.referenceEnergy = 0;
+  NewtonSpec inexactSpec = spec;
+  inexactSpec.criterion = NewtonSpec::Criterion::Residual;
+  inexactSpec.residualTolerance = spec.augmentedInnerTolerance;
+  bool lastSolveInexact = false;
   for (;;) {
     const NonlinearProblem::Augmentation augmentation = problem_.augment();
     if (!augmentation.note.empty()) observer_.note(augmentation.note);
     using Status = NonlinearProblem::Augmentation::Status;
-    if (augmentation.status == Status::Converged) return result;
+    if (augmentation.status == Status::Converged && !lastSolveInexact) return result;
     if (augmentation.status == Status::Failed) {
       return {NewtonResult::Status::Failed, result.iterations, FailureKind::Diverged,
               augmentation.message};
     }
+    // The rule met at an inexact iterate: the step is solved to the full criterion (the
+    // multipliers unchanged) and the rule checked again at that solution.
+    const bool inexact = augmentation.status == Status::Updated && spec.augmentedInnerTolerance > 0;
+    lastSolveInexact = inexact;
     const Eigen::VectorXd start = run.displacement;
-    NewtonResult next = newton_->solve(resolve, spec, run.displacement);
+    NewtonResult next = newton_->solve(inexact ? inexactResolve : resolve,
+                                       inexact ? inexactSpec : spec, run.displacement);
     auto diverged = [&next] {
       return next.status == NewtonResult::Status::Failed && next.failure == FailureKind::Diverged;
     };
@@ -305,12 +318,14 @@ NewtonResult LoadStepper::augmentStep(NewtonSpec spec, const NewtonStep& step, N
     };
     if (diverged() && !spec.lineSearch) {
       retryFromStart(summary_.lineSearchRetries, "with line search");
-      spec.lineSearch = true;
-      next = newton_->solve(resolve, spec, run.displacement);
+      spec.lineSearch = inexactSpec.lineSearch = true;
+      next = newton_->solve(inexact ? inexactResolve : resolve, inexact ? inexactSpec : spec,
+                            run.displacement);
     }
     if (diverged() && spec.penaltyContinuation &&
         problem_.stiffestPenaltyRatio() > kContinuationRatio) {
       retryFromStart(summary_.continuationRetries, "by penalty continuation");
+      lastSolveInexact = false;  // continuation solves to the full criterion
       next = solveByPenaltyContinuation(spec, resolve, run);
     }
     next.iterations += result.iterations;

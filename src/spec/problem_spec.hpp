@@ -170,6 +170,13 @@ struct NewtonSpec {
   // automatic value is retried by solves at growing penalties, starting from the automatic one
   // (solver/load_stepper.cpp).
   bool penaltyContinuation = true;
+  // Augmented Lagrangian (issue 16, 3a): 0 re-solves every multiplier update to the full
+  // criterion (Uzawa per converged step). A fraction rho in (0, 1) makes the updates interleave
+  // with Newton iterations instead: a re-solve stops once its residual has fallen to rho times its
+  // own first one, the multipliers are updated from that iterate, and only when the update rule
+  // is met there is the step solved to the full criterion and the rule checked again
+  // (LoadStepper::augmentStep).
+  double augmentedInnerTolerance = 0;
 };
 
 // The linear solver of the Newton systems (deck: `solve solver=...`, issue 13). Auto keeps the

@@ -78,6 +78,17 @@ double twoDecadeBound(const DeckRun& penaltyAtReference, const DeckRun& stiffAug
   return 2 * 1e-3 * (1 - pressForce(penaltyAtReference) / pressForce(stiffAugmented));
 }
 
+// sum w |g| over the points in contact, and the normal contact force sum w |N|.
+double integratedPenetration(const ContactPairRecord& pair) {
+  double sum = 0;
+  for (int i = 0; i < pair.gap.size(); ++i)
+    if (pair.state[i] != 0) sum += pair.weight[i] * std::abs(pair.gap[i]);
+  return sum;
+}
+double normalForce(const ContactPairRecord& pair) {
+  return pair.weight.dot(pair.normalTraction.cwiseAbs());
+}
+
 // A small block pressed onto an elastic base (4e-3) and dragged by 4e-3 in 4 steps, with
 // the automatic penalty: the augmented Lagrangian stops when the multiplier updates, integrated
 // over the surface, are below aug_tol = 1e-3 of the normal contact force; for a point in contact
@@ -95,16 +106,6 @@ TEST(AugmentedLagrangian, RemovesThePenetrationOfThePenalty) {
     for (int i = 0; i < pair.gap.size(); ++i)
       if (pair.state[i] != 0) deepest = std::max(deepest, -pair.gap[i]);
     return deepest;
-  };
-  // sum w |g| over the points in contact, and the normal contact force sum w |N|.
-  auto integratedPenetration = [](const ContactPairRecord& pair) {
-    double sum = 0;
-    for (int i = 0; i < pair.gap.size(); ++i)
-      if (pair.state[i] != 0) sum += pair.weight[i] * std::abs(pair.gap[i]);
-    return sum;
-  };
-  auto normalForce = [](const ContactPairRecord& pair) {
-    return pair.weight.dot(pair.normalTraction.cwiseAbs());
   };
   const ContactPairRecord& pressPenalty = penalty.steps.front().pair("interface");
   const ContactPairRecord& pressAugmented = augmented.steps.front().pair("interface");
@@ -253,6 +254,41 @@ TEST(AugmentedLagrangian, AStiffAugmentedPenaltyNeedsNoRetries) {
   const double bound = twoDecadeBound(reference, stiff10);
   EXPECT_LE(std::abs(pressForce(stiff100) / pressForce(stiff10) - 1), bound);
   EXPECT_LE(std::abs(pressForce(plain100) / pressForce(stiff10) - 1), bound);
+}
+
+// aug_inner (LoadStepper::augmentStep): a re-solve after a multiplier update stops at 0.1 of its
+// own first residual and the next update follows, so that updates and Newton iterations
+// interleave; once the stopping rule is met at such an iterate the step is solved to the full
+// criterion and the rule checked again there. So the rule's bound holds in every step as with
+// full re-solves, the forces agree within the two-decade bound, and the converged step is in
+// equilibrium: no load acts, so the reactions of all supports sum to the free residual, which the
+// full criterion (1e-10 of the step's first residual) makes negligible against the press force
+// (measured: at most 5e-14 of it in both runs; accepting the inexact iterate that met the rule
+// left 4e-10 to 1.2e-8). The updates cost about one Newton iteration each instead of two to
+// three (measured: 102 against 173).
+TEST(AugmentedLagrangian, InexactResolvesKeepTheRuleAndTheEquilibriumWithFewerIterations) {
+  const DeckRun reference = runSmallBlock("enforcement=penalty");
+  const DeckRun full = runSmallBlock("enforcement=augmented", "aug_inner=0");
+  const DeckRun inexact = runSmallBlock("enforcement=augmented", "aug_inner=0.1");
+  const DeckRun stiff = runSmallBlock("enforcement=augmented eps_scale=10", "aug_inner=0");
+  for (const DeckRun* run : {&reference, &full, &inexact, &stiff})
+    ASSERT_EQ(run->summary.outcome, RunSummary::Outcome::Completed);
+  ASSERT_EQ(inexact.steps.size(), full.steps.size());
+  for (const DeckRun* run : {&full, &inexact}) {
+    for (const RecordedStep& step : run->steps) {
+      const ContactPairRecord& pair = step.pair("interface");
+      EXPECT_LE(integratedPenetration(pair), 1e-3 * normalForce(pair) / pair.penaltyNormal)
+          << "step " << step.step;
+      const Eigen::Vector3d imbalance = step.reaction.rowwise().sum();
+      EXPECT_LE(imbalance.norm(), 1e-11 * pressForce(*run)) << "step " << step.step;
+    }
+  }
+  const double bound = twoDecadeBound(reference, stiff);
+  EXPECT_LE(std::abs(pressForce(inexact) / pressForce(full) - 1), bound);
+  const double fxFull = full.steps.back().setReaction("block_top").x();
+  const double fxInexact = inexact.steps.back().setReaction("block_top").x();
+  EXPECT_LE(std::abs(fxInexact / fxFull - 1), bound);
+  EXPECT_LT(inexact.summary.totalIterations, 0.7 * full.summary.totalIterations);
 }
 
 // A penalty 1e4 times the automatic one (eps = 4.2e9 against E = 2.1e4): Newton's region of
