@@ -92,7 +92,8 @@ std::vector<ValueDecl> newtonParameters() {
                       "augmented-Lagrangian contact: a re-solve after a multiplier update stops "
                       "once its residual has fallen to this fraction of its first, so that the "
                       "updates interleave with Newton iterations; the step is solved to the full "
-                      "criterion once the update rule is met. 0: every re-solve converges fully")
+                      "criterion once the update rule is met. 0: every re-solve converges fully "
+                      "(Uzawa per converged step)")
               .withRange(Range::between(0, true, 1, false))
               .withDefault(defaultText(defaults.augmentedInnerTolerance))};
 }

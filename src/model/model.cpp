@@ -68,6 +68,7 @@ NonlinearProblem::Augmentation Model::augment() {
   Augmentation result;
   for (auto& pair : contactPairs_) {
     const contact::ContactPair::Augmentation status = pair->augment();
+    result.slow = result.slow || pair->augmentationSlow();
     if (std::string note = pair->takeAugmentationNote(); !note.empty()) {
       result.note += (result.note.empty() ? "" : "\n") + note;
     }
@@ -78,10 +79,15 @@ NonlinearProblem::Augmentation Model::augment() {
         result.status = Augmentation::Status::Updated;
         break;
       case contact::ContactPair::Augmentation::Failed:
-        return {Augmentation::Status::Failed, pair->augmentationMessage(), result.note};
+        return {Augmentation::Status::Failed, pair->augmentationMessage(), result.note,
+                result.slow};
     }
   }
   return result;
+}
+
+void Model::restartAugmentationHistory() {
+  for (auto& pair : contactPairs_) pair->restartAugmentationHistory();
 }
 
 double Model::stiffestPenaltyRatio() const {

@@ -265,16 +265,24 @@ TEST(AugmentedLagrangian, AStiffAugmentedPenaltyNeedsNoRetries) {
 // full criterion (1e-10 of the step's first residual) makes negligible against the press force
 // (measured: at most 5e-14 of it in both runs; accepting the inexact iterate that met the rule
 // left 4e-10 to 1.2e-8). The updates cost about one Newton iteration each instead of two to
-// three (measured: 102 against 173).
+// three (measured: 115 against 173 Newton iterations). Where Uzawa contracts slowly (eps_ref /
+// 10, the penalty kept) the inexact iterates' error held the updates above aug_tol for 100
+// updates and cut the step back twice (17 steps); updates that stop halving switch the step to
+// full re-solves with a fresh Anderson history (ContactPair::augmentationSlow), and the run
+// takes its 5 steps (measured 380 Newton iterations against 514 with full re-solves).
 TEST(AugmentedLagrangian, InexactResolvesKeepTheRuleAndTheEquilibriumWithFewerIterations) {
   const DeckRun reference = runSmallBlock("enforcement=penalty");
   const DeckRun full = runSmallBlock("enforcement=augmented", "aug_inner=0");
   const DeckRun inexact = runSmallBlock("enforcement=augmented", "aug_inner=0.1");
   const DeckRun stiff = runSmallBlock("enforcement=augmented eps_scale=10", "aug_inner=0");
-  for (const DeckRun* run : {&reference, &full, &inexact, &stiff})
+  const DeckRun soft =
+      runSmallBlock("enforcement=augmented eps_scale=0.1 aug_grow=no", "aug_inner=0.1");
+  for (const DeckRun* run : {&reference, &full, &inexact, &stiff, &soft})
     ASSERT_EQ(run->summary.outcome, RunSummary::Outcome::Completed);
   ASSERT_EQ(inexact.steps.size(), full.steps.size());
-  for (const DeckRun* run : {&full, &inexact}) {
+  EXPECT_EQ(soft.steps.size(), full.steps.size());
+  EXPECT_EQ(soft.summary.totalCutbacks, 0);
+  for (const DeckRun* run : {&full, &inexact, &soft}) {
     for (const RecordedStep& step : run->steps) {
       const ContactPairRecord& pair = step.pair("interface");
       EXPECT_LE(integratedPenetration(pair), 1e-3 * normalForce(pair) / pair.penaltyNormal)
@@ -288,7 +296,7 @@ TEST(AugmentedLagrangian, InexactResolvesKeepTheRuleAndTheEquilibriumWithFewerIt
   const double fxFull = full.steps.back().setReaction("block_top").x();
   const double fxInexact = inexact.steps.back().setReaction("block_top").x();
   EXPECT_LE(std::abs(fxInexact / fxFull - 1), bound);
-  EXPECT_LT(inexact.summary.totalIterations, 0.7 * full.summary.totalIterations);
+  EXPECT_LT(inexact.summary.totalIterations, 0.8 * full.summary.totalIterations);
 }
 
 // A penalty 1e4 times the automatic one (eps = 4.2e9 against E = 2.1e4): Newton's region of
