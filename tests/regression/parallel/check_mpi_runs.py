@@ -218,17 +218,9 @@ def augmented_case(args):
     deck on 2 processes gives the serial run's steps, iterations and forces."""
     refusal_case(args, "enforcement=augmented",
                  "enforcement=augmented with aug_depth > 0 is not available on several processes")
-    source = os.path.join(args.source, "tests/regression/parallel/decks/block_crossing_partition.deck")
-    text = open(source).read()
-    contact = "eps_n=2.1e6 eps_t=2.1e6 mu=0.3 points=2 name=interface"
-    check(contact in text and "\nsolve\n" in text, "the crossing deck changed")
-    here = os.path.dirname(source)
-    text = re.sub(r'^(include|mesh)(\s+)"([^"/][^"]*)"',
-                  lambda m: f'{m[1]}{m[2]}"{os.path.normpath(os.path.join(here, m[3]))}"', text,
-                  flags=re.M)
-    text = text.replace(contact, "mu=0.3 points=2 enforcement=augmented aug_depth=0 name=interface")
-    deck = os.path.join(args.scratch, "crossing_uzawa_inexact.deck")
-    open(deck, "w").write(text.replace("\nsolve\n", "\nsolve\n  newton aug_inner=0.1\n"))
+    deck = crossing_variant(args, "crossing_uzawa_inexact", "aug_inner=0.1",
+                            ("eps_n=2.1e6 eps_t=2.1e6 mu=0.3",
+                             "mu=0.3 enforcement=augmented aug_depth=0"))
     serial = os.path.join(args.scratch, "uzawa_serial.h5")
     distributed = os.path.join(args.scratch, "uzawa_two.h5")
     run_ok(args, 1, "run", deck, "-o", serial, "-q")
@@ -300,16 +292,26 @@ def restart_case(args):
               f"run (largest difference {worst:.1e})")
 
 
-def predictor_case(args):
+def crossing_variant(args, name, newton_options, contact_edit=None):
+    """A copy of the crossing deck in the scratch folder with `newton_options` on a newton line
+    after `solve` and its contact line edited by contact_edit = (old, new); returns its path."""
     source = os.path.join(args.source, "tests/regression/parallel/decks/block_crossing_partition.deck")
     text = open(source).read()
-    assert "\nsolve\n" in text
-    deck = os.path.join(args.scratch, "crossing_predictor.deck")
+    check("\nsolve\n" in text, "the crossing deck changed")
     here = os.path.dirname(source)
     text = re.sub(r'^(include|mesh)(\s+)"([^"/][^"]*)"',
                   lambda m: f'{m[1]}{m[2]}"{os.path.normpath(os.path.join(here, m[3]))}"', text,
                   flags=re.M)
-    open(deck, "w").write(text.replace("\nsolve\n", "\nsolve\n  newton predictor=extrapolate\n"))
+    if contact_edit:
+        check(contact_edit[0] in text, "the crossing deck's contact line changed")
+        text = text.replace(*contact_edit)
+    deck = os.path.join(args.scratch, name + ".deck")
+    open(deck, "w").write(text.replace("\nsolve\n", f"\nsolve\n  newton {newton_options}\n"))
+    return deck
+
+
+def predictor_case(args):
+    deck = crossing_variant(args, "crossing_predictor", "predictor=extrapolate")
     serial = os.path.join(args.scratch, "serial.h5")
     distributed = os.path.join(args.scratch, "two.h5")
     run_ok(args, 1, "run", deck, "-o", serial, "-q")
