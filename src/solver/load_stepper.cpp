@@ -274,6 +274,9 @@ NewtonResult LoadStepper::solveByPenaltyContinuation(const NewtonSpec& spec, con
 // forces by eps g, and at a stiff penalty the re-solve then cycles as the step's first solve did
 // (the small block at 100 eps_ref: a re-solve whose residual grew to 19 times its first value
 // threw away the step's converged solves and cut the step back; 11 cut-backs in 5 steps).
+// With aug_inner > 0 (NewtonSpec::augmentedInnerTolerance) the re-solves stop early, so that the
+// updates interleave with Newton iterations, and a full solve ends the step (the issue's
+// Newton-integrated variant; docs/verification/augmented_lagrangian.md).
 NewtonResult LoadStepper::augmentStep(NewtonSpec spec, const NewtonStep& step, NewtonResult result,
                                       PhaseRun& run) {
   NewtonStep resolve = step;
