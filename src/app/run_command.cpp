@@ -398,12 +398,8 @@ int runCommand(const RunOptions& options) {
           "newton: line search on (an enforcement=augmented contact pair; line_search=no "
           "turns it off)\n");
     }
-    const bool augmented =
-        std::any_of(spec.contacts.begin(), spec.contacts.end(), [](const ContactSpec& contact) {
-          return contact.enforcement == ContactSpec::Enforcement::Augmented;
-        });
     const double inner = spec.phases.front().newton.augmentedInnerTolerance;
-    if (augmented && inner > 0) {
+    if (spec.hasAugmentedContact() && inner > 0) {
       printOut(
           fmt::format("newton: augmented re-solves stop at aug_inner = {:g} of their first "
                       "residual; each step ends with a full solve\n",

@@ -1,7 +1,6 @@
 // The solve block: `solve` ... `end`, sticky `newton`/`cutback` settings and `steps` phases.
 #include <fmt/format.h>
 
-#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -158,10 +157,7 @@ void applyNewtonParameters(const ParsedLine& line, NewtonSpec& newton) {
 // cut-backs; with the line search from the start 56, none), and the line search costs nothing at
 // softer penalties (docs/verification/augmented_lagrangian.md).
 void resolveNewtonDefaults(ProblemSpec& spec) {
-  const bool augmented =
-      std::any_of(spec.contacts.begin(), spec.contacts.end(), [](const ContactSpec& contact) {
-        return contact.enforcement == ContactSpec::Enforcement::Augmented;
-      });
+  const bool augmented = spec.hasAugmentedContact();
   for (PhaseSpec& phase : spec.phases) {
     if (!phase.newton.lineSearchChosen) phase.newton.lineSearch = augmented;
   }

@@ -79,8 +79,7 @@ NonlinearProblem::Augmentation Model::augment() {
         result.status = Augmentation::Status::Updated;
         break;
       case contact::ContactPair::Augmentation::Failed:
-        return {Augmentation::Status::Failed, pair->augmentationMessage(), result.note,
-                result.slow};
+        return {Augmentation::Status::Failed, pair->augmentationMessage(), result.note};
     }
   }
   return result;

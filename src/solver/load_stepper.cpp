@@ -287,9 +287,13 @@ NewtonResult LoadStepper::augmentStep(NewtonSpec spec, const NewtonStep& step, N
   // disturbance), stops at that fraction of it; its iterate only feeds the next update.
   NewtonStep inexactResolve = resolve;
   inexactResolve.referenceResidual = inexactResolve.referenceEnergy = 0;
-  NewtonSpec inexactSpec = spec;
-  inexactSpec.criterion = NewtonSpec::Criterion::Residual;
-  inexactSpec.residualTolerance = spec.augmentedInnerTolerance;
+  auto resolveFrom = [&](bool inexact) {
+    if (!inexact) return newton_->solve(resolve, spec, run.displacement);
+    NewtonSpec loose = spec;  // with the line search if the step has it by now
+    loose.criterion = NewtonSpec::Criterion::Residual;
+    loose.residualTolerance = spec.augmentedInnerTolerance;
+    return newton_->solve(inexactResolve, loose, run.displacement);
+  };
   bool lastSolveInexact = false;
   bool inexactAllowed = spec.augmentedInnerTolerance > 0;  // until the updates slow down
   for (;;) {
@@ -311,8 +315,7 @@ NewtonResult LoadStepper::augmentStep(NewtonSpec spec, const NewtonStep& step, N
     const bool inexact = augmentation.status == Status::Updated && inexactAllowed;
     lastSolveInexact = inexact;
     const Eigen::VectorXd start = run.displacement;
-    NewtonResult next = newton_->solve(inexact ? inexactResolve : resolve,
-                                       inexact ? inexactSpec : spec, run.displacement);
+    NewtonResult next = resolveFrom(inexact);
     auto diverged = [&next] {
       return next.status == NewtonResult::Status::Failed && next.failure == FailureKind::Diverged;
     };
@@ -327,9 +330,8 @@ NewtonResult LoadStepper::augmentStep(NewtonSpec spec, const NewtonStep& step, N
     };
     if (diverged() && !spec.lineSearch) {
       retryFromStart(summary_.lineSearchRetries, "with line search");
-      spec.lineSearch = inexactSpec.lineSearch = true;
-      next = newton_->solve(inexact ? inexactResolve : resolve, inexact ? inexactSpec : spec,
-                            run.displacement);
+      spec.lineSearch = true;
+      next = resolveFrom(inexact);
     }
     if (diverged() && spec.penaltyContinuation &&
         problem_.stiffestPenaltyRatio() > kContinuationRatio) {

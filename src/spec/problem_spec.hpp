@@ -252,6 +252,15 @@ struct ProblemSpec {
   LinearSolverSpec linearSolver;
   OutputSpec output;
   std::vector<ReferenceSpec> references;
+
+  // Whether a contact pair is enforced by the augmented Lagrangian (the Newton defaults and the
+  // run header depend on it).
+  bool hasAugmentedContact() const {
+    for (const ContactSpec& contact : contacts) {
+      if (contact.enforcement == ContactSpec::Enforcement::Augmented) return true;
+    }
+    return false;
+  }
 };
 
 }  // namespace cc
