@@ -205,8 +205,16 @@ class CholmodSolver final : public LinearSolver {
   }
 
   Eigen::VectorXd solve(const Eigen::VectorXd& rhs) override {
-    if (!factor_) throw std::logic_error("CHOLMOD: solve() without factorization");
     const auto start = std::chrono::steady_clock::now();
+    Eigen::VectorXd result = applyFactor(rhs);
+    ++statistics_.solves;
+    statistics_.solveSeconds += secondsSince(start);
+    return result;
+  }
+
+  // CHOLMOD does not refine: a solve is the factor applied.
+  Eigen::VectorXd applyFactor(const Eigen::VectorXd& rhs) override {
+    if (!factor_) throw std::logic_error("CHOLMOD: solve() without factorization");
     cholmod_dense right{};
     right.nrow = static_cast<std::size_t>(rhs.size());
     right.ncol = 1;
@@ -222,8 +230,6 @@ class CholmodSolver final : public LinearSolver {
     Eigen::VectorXd result =
         Eigen::Map<const Eigen::VectorXd>(static_cast<const double*>(solution->x), rhs.size());
     cholmod_free_dense(&solution, &common_);
-    ++statistics_.solves;
-    statistics_.solveSeconds += secondsSince(start);
     return result;
   }
 

@@ -35,7 +35,8 @@ struct LinearSolverStatistics {
   // diverged and were redone with a direct solver (TangentSolver's fallback).
   long krylovIterations = 0;
   int krylovFallbacks = 0;
-  // Iterative backends: factorize() calls that kept the last AMG hierarchy (petsc_solver.cpp).
+  // factorize() calls that kept an earlier preconditioner: the AMG hierarchy of an iterative
+  // backend (petsc_solver.cpp), or the factor of a direct one (factor_reuse.hpp).
   int reusedPreconditioners = 0;
   // Several processes: bytes this process sent for matrix entries of rows another process
   // owns, and received of the solution (the direct solver's own traffic is not counted).
@@ -89,6 +90,10 @@ class LinearSolver {
   // and unchanged until the last solve() with this factorization (UMFPACK refines with it).
   virtual void factorize(const SparseMatrix& matrix) = 0;
   virtual Eigen::VectorXd solve(const Eigen::VectorXd& rhs) = 0;
+  // The factor alone applied to rhs, without refinement against the factorized matrix: the
+  // preconditioner of a later tangent of the same pattern (factor_reuse.hpp), after the matrix
+  // passed to factorize() may have been overwritten by that tangent.
+  virtual Eigen::VectorXd applyFactor(const Eigen::VectorXd& rhs) { return solve(rhs); }
   // Frees the numeric factor and keeps the symbolic analysis: a solver that another one has
   // replaced for now (CHOLMOD while the system is unsymmetric) holds no factor memory.
   virtual void releaseFactor() = 0;

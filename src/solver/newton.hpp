@@ -135,6 +135,7 @@ class Newton {
   int assemblies() const { return assemblies_; }
   double assemblySeconds() const { return assemblySeconds_; }
   const TangentSolver& linearSolver() const { return linear_; }
+  void setFactorReuse(bool reuse) { linear_.setFactorReuse(reuse); }
   // Diagnostics (covcontact run --check-tangent): at this step and iteration, compare the
   // assembled tangent with central differences of the residual (printed to stderr).
   void setTangentCheck(int step, int iteration) { tangentCheck_ = {step, iteration}; }

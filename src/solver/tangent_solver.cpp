@@ -5,9 +5,12 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <chrono>
 #include <stdexcept>
 
 #include "common/errors.hpp"
+#include "common/stopwatch.hpp"
+#include "solver/factor_reuse.hpp"
 
 namespace cc {
 
@@ -188,16 +191,55 @@ void TangentSolver::factorizeDirect(const SystemMatrices& system) {
   }
 }
 
+bool TangentSolver::canReuseFactor(const SystemMatrices& system) const {
+  return reuseFactors_ && !refactorizeNext_ && active_ && reusableFactor_ &&
+         system.free.rows() == size_;
+}
+
+void TangentSolver::recordFactor() {
+  // Only the serial direct pair: a PETSc backend keeps its own copy of the matrix (and an
+  // iterative one its own reuse of the AMG hierarchy).
+  const bool serialDirect =
+      active_ && !distributed_ &&
+      (active_ == symmetric_.solver.get() || active_ == general_.solver.get());
+  reusableFactor_ = serialDirect;
+  refactorizeNext_ = false;
+}
+
 void TangentSolver::factorize(const SystemMatrices& system) {
-  active_ = nullptr;
+  reusing_ = canReuseFactor(system);
   system_ = &system;
+  if (reusing_) return;
+  active_ = nullptr;
+  reusableFactor_ = false;
   size_ = system.free.rows();
   if (size_ == 0) return;  // everything prescribed: nothing to solve
   if (usesPetsc(size_)) {
     factorizeWith(petsc_, system);
-    return;
+  } else {
+    factorizeDirect(system);
   }
-  factorizeDirect(system);
+  recordFactor();
+}
+
+Eigen::VectorXd TangentSolver::solveWithReusedFactor(const Eigen::VectorXd& rhs) {
+  const auto start = std::chrono::steady_clock::now();
+  const ReusedFactorSolve reused =
+      solveWithEarlierFactor(system_->free, *active_, rhs, kReusedFactorIterations);
+  reuseKrylovIterations_ += reused.iterations;
+  reuseSeconds_ += secondsSince(start);
+  if (reused.converged) {
+    ++reusedFactors_;
+    // The tangents drift further from the factor as Newton goes on: one that needed more than
+    // half the allowance is factorized next time rather than risk a wasted attempt.
+    if (reused.iterations > kReusedFactorIterations / 2) refactorizeNext_ = true;
+    return reused.solution;
+  }
+  reusing_ = false;
+  active_ = nullptr;
+  factorizeDirect(*system_);
+  recordFactor();
+  return active_->solve(rhs);
 }
 
 Eigen::VectorXd TangentSolver::solve(const Eigen::VectorXd& rhs) {
@@ -209,7 +251,7 @@ Eigen::VectorXd TangentSolver::solve(const Eigen::VectorXd& rhs) {
     if (iterationLimit_ > 0) active_->setIterationLimit(iterationLimit_);
   }
   try {
-    solution = active_->solve(rhs);
+    solution = reusing_ ? solveWithReusedFactor(rhs) : active_->solve(rhs);
   } catch (const KrylovFailure& failure) {
     // A Krylov solve that stalled, or a PETSc direct solve that missed: CHOLMOD/UMFPACK (MUMPS
     // on several processes).
@@ -237,6 +279,10 @@ LinearSolverStatistics TangentSolver::statistics() const {
   if (petsc_.solver) total += petsc_.solver->statistics();
   if (mumpsDirect_.solver) total += mumpsDirect_.solver->statistics();
   total.krylovFallbacks = krylovFallbacks_;
+  total.reusedPreconditioners += reusedFactors_;
+  total.krylovIterations += reuseKrylovIterations_;
+  total.solves += reusedFactors_;
+  total.solveSeconds += reuseSeconds_;
   return total;
 }
 

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <iterator>
 #include <stdexcept>
 #include <vector>
 
@@ -37,6 +38,8 @@ class UmfpackSolver final : public LinearSolver {
   explicit UmfpackSolver(FillOrdering ordering) {
     umfpack_dl_defaults(control_);
     control_[UMFPACK_ORDERING] = umfpackOrdering(ordering);
+    std::copy(std::begin(control_), std::end(control_), std::begin(unrefinedControl_));
+    unrefinedControl_[UMFPACK_IRSTEP] = 0;
   }
   ~UmfpackSolver() override { release(); }
   UmfpackSolver(const UmfpackSolver&) = delete;
@@ -109,18 +112,17 @@ class UmfpackSolver final : public LinearSolver {
   }
 
   Eigen::VectorXd solve(const Eigen::VectorXd& rhs) override {
-    if (!numeric_ || !matrix_) throw std::logic_error("UMFPACK: solve() without factorization");
     const auto start = std::chrono::steady_clock::now();
-    Eigen::VectorXd solution(rhs.size());
-    const SuiteSparse_long status =
-        umfpack_dl_solve(UMFPACK_A, columnStarts_.data(), rowIndices_.data(), matrix_->valuePtr(),
-                         solution.data(), rhs.data(), numeric_, control_, info_);
-    if (status != UMFPACK_OK) {
-      throw std::runtime_error(fmt::format("UMFPACK solve failed (status {})", status));
-    }
+    Eigen::VectorXd solution = solveWith(rhs, control_);
     ++statistics_.solves;
     statistics_.solveSeconds += secondsSince(start);
     return solution;
+  }
+
+  // Without refinement UMFPACK does not read the matrix values (which may belong to a later
+  // tangent by now).
+  Eigen::VectorXd applyFactor(const Eigen::VectorXd& rhs) override {
+    return solveWith(rhs, unrefinedControl_);
   }
 
   void releaseFactor() override {
@@ -129,6 +131,18 @@ class UmfpackSolver final : public LinearSolver {
   }
 
  private:
+  Eigen::VectorXd solveWith(const Eigen::VectorXd& rhs, const double* control) {
+    if (!numeric_ || !matrix_) throw std::logic_error("UMFPACK: solve() without factorization");
+    Eigen::VectorXd solution(rhs.size());
+    const SuiteSparse_long status =
+        umfpack_dl_solve(UMFPACK_A, columnStarts_.data(), rowIndices_.data(), matrix_->valuePtr(),
+                         solution.data(), rhs.data(), numeric_, control, info_);
+    if (status != UMFPACK_OK) {
+      throw std::runtime_error(fmt::format("UMFPACK solve failed (status {})", status));
+    }
+    return solution;
+  }
+
   static int rows(const SparseMatrix& matrix) { return static_cast<int>(matrix.rows()); }
   static void checkShape(const SparseMatrix& matrix) {
     if (!matrix.isCompressed() || matrix.rows() != matrix.cols()) {
@@ -173,6 +187,7 @@ class UmfpackSolver final : public LinearSolver {
   }
 
   double control_[UMFPACK_CONTROL];
+  double unrefinedControl_[UMFPACK_CONTROL];  // control_ with UMFPACK_IRSTEP 0
   double info_[UMFPACK_INFO];
   void* symbolic_ = nullptr;
   void* numeric_ = nullptr;

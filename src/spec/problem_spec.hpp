@@ -191,6 +191,11 @@ struct NewtonSpec {
 struct LinearSolverSpec {
   enum class Method { Auto, Cholmod, Umfpack, Mumps, SuperluDist, Amg, Gamg };
   Method method = Method::Auto;
+  // CHOLMOD's and UMFPACK's factors serve later tangents of a Newton solve as GMRES
+  // preconditioners (solver/factor_reuse.hpp); `solve reuse_factor=no` factorizes every
+  // tangent. Default: yes, except in a deck with an augmented-Lagrangian pair (deck layer).
+  bool reuseFactor = true;
+  bool reuseFactorChosen = false;  // given in the deck
   SourceLocation where;
 };
 

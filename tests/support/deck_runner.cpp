@@ -43,7 +43,7 @@ DeckRun run(const ProblemSpec& spec, bool withStress) {
   DeckRun result;
   result.model = buildModel(spec);
   RecordingObserver observer(result, withStress);
-  LoadStepper stepper(*result.model, observer, spec.phases);
+  LoadStepper stepper(*result.model, observer, spec.phases, spec.linearSolver);
   result.summary = stepper.run();
   return result;
 }

@@ -277,7 +277,7 @@ int run(const Options& options) {
       "\"nodes\": {}, \"elements\": {}, \"dofs\": {}, \"free_dofs\": {}, \"contact_points\": {}, "
       "\"steps\": {}, \"iterations\": {}, \"cutbacks\": {}, \"assemblies\": {}, "
       "\"factor_bytes\": {:.0f}, \"factor_flops\": {:.0f}, \"mesh_bytes\": {:.0f}, \"analyses\": "
-      "{}, \"factorizations\": {}, "
+      "{}, \"factorizations\": {}, \"reused_factors\": {}, "
       "\"solves\": {}, "
       "\"cholesky_fallbacks\": {}, \"pattern_builds\": {}, \"pattern_versions\": {}, "
       "\"colorings\": {}, \"steps_written\": {}, "
@@ -290,11 +290,12 @@ int run(const Options& options) {
       3 * model->mesh().numNodes(), model->dofMap().numFree(), model->contactPointCount(),
       summary.stepsConverged, summary.totalIterations, summary.totalCutbacks, statistics.assemblies,
       linear.largestFactorBytes, linear.largestFactorFlops, meshBytes(model->mesh()),
-      linear.analyses, linear.factorizations, linear.solves, statistics.choleskyFallbacks,
-      assembly.patternBuilds, assembly.patternVersions, assembly.colorings, observer.stepsWritten,
-      totalSeconds, setupSeconds, solveSeconds, parts.elements, parts.contactSearch,
-      parts.contactKernel, assembly.pattern, statistics.assemblySeconds, linear.analysisSeconds,
-      linear.factorizationSeconds, linear.solveSeconds, observer.outputSeconds + openCloseSeconds);
+      linear.analyses, linear.factorizations, linear.reusedPreconditioners, linear.solves,
+      statistics.choleskyFallbacks, assembly.patternBuilds, assembly.patternVersions,
+      assembly.colorings, observer.stepsWritten, totalSeconds, setupSeconds, solveSeconds,
+      parts.elements, parts.contactSearch, parts.contactKernel, assembly.pattern,
+      statistics.assemblySeconds, linear.analysisSeconds, linear.factorizationSeconds,
+      linear.solveSeconds, observer.outputSeconds + openCloseSeconds);
   return summary.outcome == cc::RunSummary::Outcome::Completed ? 0 : 1;
 }
 

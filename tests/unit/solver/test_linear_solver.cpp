@@ -1,10 +1,13 @@
 // Linear solvers: CHOLMOD and UMFPACK against dense references, the CHOLMOD -> UMFPACK fallback
-// for symmetric indefinite systems, singular systems, and reuse of the symbolic analysis.
+// for symmetric indefinite systems, singular systems, reuse of the symbolic analysis, and reuse
+// of a factor as the GMRES preconditioner of later tangents.
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <cmath>
 
 #include "common/errors.hpp"
+#include "solver/factor_reuse.hpp"
 #include "solver/linear_solver.hpp"
 #include "solver/tangent_solver.hpp"
 
@@ -104,6 +107,7 @@ TEST(TangentSolver, IndefiniteSymmetricSystemFallsBackToUmfpackForTheRestOfTheSt
   const Eigen::VectorXd rhs = rightHandSide(matrix.rows());
   const SystemMatrices system = systemOf(matrix, true, 1);
   TangentSolver solver;
+  solver.setFactorReuse(false);  // every tangent factorized: the backends are under test
   solver.factorize(system);
   EXPECT_EQ(solver.activeBackend(), "UMFPACK");
   EXPECT_EQ(solver.choleskyFallbacks(), 1);
@@ -153,6 +157,7 @@ TEST(TangentSolver, SymbolicAnalysisRepeatedOnlyWhenThePatternVersionChanges) {
   SparseMatrix matrix = gridLaplacian(8, 0.0);
   const Eigen::VectorXd rhs = rightHandSide(matrix.rows());
   TangentSolver solver;
+  solver.setFactorReuse(false);  // every tangent factorized: the backends are under test
   for (int iteration = 1; iteration <= 10; ++iteration) {
     matrix.coeffs() *= 1.1;  // new values, same pattern
     const SystemMatrices system = systemOf(matrix, true, 42);
@@ -184,6 +189,7 @@ TEST(TangentSolver, SwitchingBackendsKeepsOneFactorAndBothAnalyses) {
   const SystemMatrices symmetricSystem = systemOf(symmetricMatrix, true, 7);
   const SystemMatrices unsymmetricSystem = systemOf(unsymmetricMatrix, false, 7);
   TangentSolver solver;
+  solver.setFactorReuse(false);  // every tangent factorized: the backends are under test
   for (int round = 0; round < 3; ++round) {
     solver.factorize(symmetricSystem);
     EXPECT_EQ(solver.activeBackend(), "CHOLMOD");
@@ -194,6 +200,77 @@ TEST(TangentSolver, SwitchingBackendsKeepsOneFactorAndBothAnalyses) {
   }
   EXPECT_EQ(solver.statistics().analyses, 2);  // one per backend, never repeated
   EXPECT_EQ(solver.statistics().factorizations, 6);
+}
+
+// The tangents of one Newton step: the same grid operator with its entries scaled by
+// 1 + amplitude * sin(entry), a pattern version of their own each (contact moves entries).
+SparseMatrix perturbed(const SparseMatrix& base, double amplitude, int seed) {
+  SparseMatrix matrix = base;
+  for (Eigen::Index k = 0; k < matrix.nonZeros(); ++k) {
+    matrix.valuePtr()[k] *= 1 + amplitude * std::sin(1.7 * static_cast<double>(k + seed));
+  }
+  return matrix;
+}
+
+TEST(TangentSolver, LaterTangentsAreSolvedWithTheFirstFactorToTheReuseTolerance) {
+  const SparseMatrix base = gridLaplacian(30, 0.0);
+  const Eigen::VectorXd rhs = rightHandSide(base.rows());
+  TangentSolver solver;
+  for (int iteration = 0; iteration < 6; ++iteration) {
+    // Unsymmetric from the second tangent on, as when friction starts to slip.
+    const SparseMatrix matrix = perturbed(base, iteration == 0 ? 0.0 : 1e-3, iteration);
+    const SystemMatrices system = systemOf(matrix, iteration == 0, 10 + iteration);
+    solver.factorize(system);
+    const Eigen::VectorXd solution = solver.solve(rhs);
+    const Eigen::VectorXd exact = Eigen::MatrixXd(matrix).lu().solve(rhs);
+    EXPECT_LT(relativeResidual(matrix, solution, rhs), kReusedFactorResidual) << iteration;
+    EXPECT_LT((solution - exact).norm(), 1e-10 * exact.norm()) << iteration;
+  }
+  const LinearSolverStatistics work = solver.statistics();
+  EXPECT_EQ(work.factorizations, 1);
+  EXPECT_EQ(work.analyses, 1);
+  EXPECT_EQ(work.reusedPreconditioners, 5);
+  EXPECT_EQ(work.solves, 6);
+  // A 1e-3 change leaves a few GMRES iterations per solve, well inside the allowance.
+  EXPECT_GE(work.krylovIterations, 5);
+  EXPECT_LE(work.krylovIterations, 5 * kReusedFactorIterations / 2);
+  EXPECT_EQ(solver.activeBackend(), "CHOLMOD");  // the factor that served them all
+}
+
+TEST(TangentSolver, ATangentTooFarFromTheFactorIsFactorizedAfterAll) {
+  const SparseMatrix base = gridLaplacian(30, 0.0);
+  const Eigen::VectorXd rhs = rightHandSide(base.rows());
+  TangentSolver solver;
+  const SystemMatrices first = systemOf(base, true, 1);
+  solver.factorize(first);
+  (void)solver.solve(rhs);
+  // Entries changed by up to 90 %: the old factor is no preconditioner for this one.
+  const SparseMatrix far = perturbed(base, 0.9, 3);
+  const SystemMatrices second = systemOf(far, false, 2);
+  solver.factorize(second);
+  const Eigen::VectorXd solution = solver.solve(rhs);
+  EXPECT_LT(relativeResidual(far, solution, rhs), 1e-13);  // a direct solve's accuracy
+  EXPECT_EQ(solver.activeBackend(), "UMFPACK");
+  const LinearSolverStatistics work = solver.statistics();
+  EXPECT_EQ(work.factorizations, 2);
+  EXPECT_EQ(work.reusedPreconditioners, 0);
+  EXPECT_EQ(work.krylovIterations, kReusedFactorIterations);  // the attempt that was given up
+}
+
+TEST(TangentSolver, WithoutReuseEveryTangentIsFactorized) {
+  const SparseMatrix base = gridLaplacian(12, 0.0);
+  const Eigen::VectorXd rhs = rightHandSide(base.rows());
+  TangentSolver solver;
+  solver.setFactorReuse(false);
+  for (int iteration = 0; iteration < 4; ++iteration) {
+    const SparseMatrix matrix = perturbed(base, 1e-3, iteration);
+    const SystemMatrices system = systemOf(matrix, false, 5);
+    solver.factorize(system);
+    EXPECT_LT(relativeResidual(matrix, solver.solve(rhs), rhs), 1e-13);
+  }
+  EXPECT_EQ(solver.statistics().factorizations, 4);
+  EXPECT_EQ(solver.statistics().reusedPreconditioners, 0);
+  EXPECT_EQ(solver.statistics().krylovIterations, 0);
 }
 
 }  // namespace
