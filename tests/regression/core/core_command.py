@@ -10,6 +10,9 @@ import subprocess
 import sys
 import xml.etree.ElementTree as ElementTree
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "support"))
+import progress_lines  # noqa: E402  (tests/support)
+
 # Longest time one command of these tests may take on a loaded 2-core machine.
 COMMAND_TIMEOUT_S = 100
 
@@ -45,12 +48,7 @@ def run(command, cwd):
 
 def step_lines(stdout):
     """The plain progress lines `step k  t = T of END  N iterations ...` as {k: iterations}."""
-    steps = {}
-    for line in stdout.splitlines():
-        words = line.split()
-        if len(words) >= 9 and words[0] == "step" and words[5] == "of" and words[8] == "iterations":
-            steps[int(words[1])] = int(words[7])
-    return steps
+    return progress_lines.converged_steps(stdout)
 
 
 def read_reactions_csv(path):

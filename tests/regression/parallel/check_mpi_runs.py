@@ -35,12 +35,12 @@ import time
 import h5py
 import numpy as np
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "support"))
+import progress_lines  # noqa: E402  (tests/support)
+
 TIMEOUT_S = 240  # one command on a loaded 2-core machine
 TOLERANCE = 1e-8  # serial against distributed: different summation order and solver only
 EXIT = {"ok": 0, "usage": 1, "input": 2, "interrupted": 4}  # `covcontact --help`
-CONTACT_LOG = re.compile(r"iteration (\d+) .*contact: (\d+) active, (\d+) changed state, "
-                         r"(\d+) changed segment")
-CONVERGED_STEP = re.compile(r"step (\d+)\s+t = \S+ of \S+\s+\d+ iterations")
 
 
 def fail(message):
@@ -169,7 +169,8 @@ def crossing_case(args):
     # Each process evaluates only its own contact points in the iterations: the per-iteration
     # counts of points in contact and of state and segment changes are summed over processes
     # and must be the serial run's, iteration by iteration.
-    serial_log, distributed_log = (CONTACT_LOG.findall(r.stdout) for r in (serial_run, result))
+    serial_log, distributed_log = (progress_lines.iteration_lines(r.stdout)
+                                   for r in (serial_run, result))
     check(len(serial_log) > count, f"serial run printed {len(serial_log)} iteration lines")
     check(distributed_log == serial_log,
           f"--newton-log contact counts differ from the serial run's:\n{distributed_log[:20]}\n"
@@ -257,9 +258,9 @@ def signal_after_step(args, processes, deck, results, after_step, signal_number,
         # Rank 0's output reaches mpirun through a terminal, so progress comes as \r-separated
         # updates; "step k/n  t = ..  m iterations" says step k converged (and is written).
         for update in line.split("\r"):
-            converged = CONVERGED_STEP.match(update.strip())
+            converged = progress_lines.converged_step(update)
             if converged:
-                reported = max(reported, int(converged.group(1)))
+                reported = max(reported, converged[0])
         if reported >= after_step:
             ranks = sorted(rank_processes(launcher))
             check(len(ranks) == processes, f"found {len(ranks)} processes under mpirun")

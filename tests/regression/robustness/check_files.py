@@ -57,6 +57,9 @@ import time
 
 import h5py
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "support"))
+import progress_lines  # noqa: E402  (tests/support)
+
 COMMAND_TIMEOUT_S = 120
 EXIT_OK, EXIT_USAGE, EXIT_INTERRUPTED, EXIT_IO, EXIT_OUT_OF_MEMORY = 0, 1, 4, 6, 8
 CORE = os.path.join("input", "verification", "core")
@@ -308,7 +311,8 @@ def start_long_run(args, decks, results, deck_text=None):
 
 def wait_for_progress_line(process, step):
     for line in process.stdout:
-        if line.startswith(f"step {step}  t = "):
+        converged = progress_lines.converged_step(line)
+        if converged and converged[0] == step:
             return
     fail(f"the run ended before step {step}")
 

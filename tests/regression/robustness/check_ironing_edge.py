@@ -14,6 +14,9 @@ import sys
 
 import stress_script
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "support"))
+import progress_lines  # noqa: E402  (tests/support)
+
 args = stress_script.parse_args()
 source = stress_script.ironing_deck_text(args, "ironing_nts_mu03_equal.deck")
 assert "steps 100 dt=0.01" in source and "tangent=exact edge=fade name=die" in source
@@ -26,7 +29,7 @@ def run(name, contact_options, steps):
     r = subprocess.run([args.covcontact, "run", "--threads", "1", deck, "-o",
                         os.path.join(args.scratch, name + ".h5")],
                        capture_output=True, text=True, timeout=280)
-    steps_done = [int(m) for m in re.findall(r"^step \d+  t = \S+ of \S+  (\d+) iterations", r.stdout, re.M)]
+    steps_done = list(progress_lines.converged_steps(r.stdout).values())
     return r, steps_done
 
 

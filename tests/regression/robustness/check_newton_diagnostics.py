@@ -12,6 +12,9 @@ import sys
 
 import stress_script
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "support"))
+import progress_lines  # noqa: E402  (tests/support)
+
 args = stress_script.parse_args()
 deck = stress_script.exact_large_slip_deck(args)
 run = subprocess.run([args.covcontact, "run", "--threads", "1", "--newton-log", "--check-tangent",
@@ -20,19 +23,18 @@ run = subprocess.run([args.covcontact, "run", "--threads", "1", "--newton-log", 
 failures = []
 if run.returncode != 0:
     failures.append(f"exit code {run.returncode}: {run.stderr}")
-iteration = re.compile(r"^  step (\d+) attempt (\d+) iteration (\d+) .* contact: (\d+) active, "
-                       r"(\d+) changed state, (\d+) changed segment$")
 last = {}
 step_lines = []
 for line in run.stdout.splitlines():
-    m = iteration.match(line)
-    if m:
-        last[int(m[1])] = int(m[3])
-    m = re.match(r"^step (\d+)  t = \S+ of \S+  (\d+) iterations", line)
-    if m:
-        step_lines.append(int(m[1]))
-    if m and last.get(int(m[1])) != int(m[2]):
-        failures.append(f"step {m[1]}: {m[2]} iterations, log shows {last.get(int(m[1]))}")
+    logged = progress_lines.iteration_lines(line)
+    if logged:
+        last[logged[0][0]] = logged[0][2]
+    converged = progress_lines.converged_step(line)
+    if converged:
+        step, iterations = converged
+        step_lines.append(step)
+        if last.get(step) != iterations:
+            failures.append(f"step {step}: {iterations} iterations, log shows {last.get(step)}")
 if step_lines != [1, 2]:
     failures.append(f"converged-step lines for steps {step_lines}, expected [1, 2]")
 if sorted(last) != [1, 2]:
