@@ -131,6 +131,7 @@ void ContactPair::initializeHistory(const AssemblyState& state) {
   for (PairPoint& point : points_) {
     point.committedSearchSegment = point.segment;
     point.committedSearchXi = point.xi;
+    point.segmentChangesInStep = 0;
     buildItem(point);
   }
   ++topologyVersion_;
@@ -310,6 +311,7 @@ void ContactPair::commitStep() {
     h.surfaceOffset = surfaceOffset_;
     point.committedSearchSegment = point.segment;
     point.committedSearchXi = point.xi;
+    point.segmentChangesInStep = 0;
   }
   passAtStepStart_ = evaluationPass_;
   // The previous-segment nodes of the items follow the new history.
@@ -324,6 +326,7 @@ void ContactPair::restoreStep() {
     if (searchesMasterSegments(config_.kind)) {
       point.segment = point.committedSearchSegment;
       point.xi = point.committedSearchXi;
+      point.segmentChangesInStep = 0;
     }
     point.trial = PointTrial{};
     buildItem(point);

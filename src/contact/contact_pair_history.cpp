@@ -116,6 +116,7 @@ void ContactPair::importHistory(const Eigen::MatrixXd& table) {
     point.xi = column.segment<2>(kSearchXi);
     point.committedSearchSegment = point.segment;
     point.committedSearchXi = point.xi;
+    point.segmentChangesInStep = 0;
     point.trial = PointTrial{};
     buildItem(point);
   }

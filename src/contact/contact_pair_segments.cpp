@@ -66,6 +66,7 @@ void ContactPair::inheritHistory(PairPoint& point, const Eigen::Matrix3Xd& x) co
   h.xi = point.xi;
   point.committedSearchSegment = point.segment;
   point.committedSearchXi = point.xi;
+  point.segmentChangesInStep = 0;
   if (!h.projected || h.state == ContactState::Open) {
     h.traction.setZero();
     h.tractionCovariant.setZero();

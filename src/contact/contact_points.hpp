@@ -62,6 +62,10 @@ struct PairPoint {
   // step starts its search exactly where the first attempt did.
   int committedSearchSegment = -1;
   Eigen::Vector2d committedSearchXi = Eigen::Vector2d::Zero();
+  // Segment changes since the search state was last committed or restored: from the second
+  // on, the point hops back and forth over an edge and the search holds it (hopped()).
+  int segmentChangesInStep = 0;
+  bool hopped() const { return segmentChangesInStep >= 2; }
   // The item: node list and where the slave/master/previous-master nodes sit in it.
   std::vector<int> nodes;
   PointLayout layout;

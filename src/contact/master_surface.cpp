@@ -23,6 +23,17 @@ constexpr double kInsideTolerance = 1e-10;
 // the residual oscillate at about 1e-7 of its first value forever (input/stress/
 // slave_on_master_edges_sts.deck). Both segments are correct within the kink's angle there.
 constexpr double kStayOnSegmentTolerance = 1e-6;
+// A point that has already changed segment twice in a step (over there and back) keeps its
+// segment while its projection leaves it by up to this much. Where the master's normal jumps
+// at an edge (a faceted master, or a Nagata patch edge: C0 in the normal) an NTS node that
+// presses on the edge has no equilibrium on either segment: on each, its force pushes it over
+// the edge onto the other, by ~1e-5 in parameter space, and Newton alternates between the two
+// at a relative residual of ~1e-10 for ever (the smoothed ironing die with the energy
+// criterion: 3 points every iteration, relative energy 1.5e-16 against 1e-16, a cut-back in
+// most sliding steps). Held, the point converges slightly beyond the edge: its segment's
+// surface extended by at most 1e-3 of the parameter range, which on a facet of kink angle a
+// moves the contact point by at most 1e-3 a of half a segment.
+constexpr double kHopStayTolerance = 1e-3;
 // Above a ridge of the master surface (segments meeting at a convex kink seen from the slave
 // side, e.g. where a concentrated slave-node force dents a C0 Quad9 surface at an element edge)
 // lies a wedge from which a point projects beyond the shared edge on each segment: its closest
@@ -215,7 +226,8 @@ void MasterSurface::buildSearchGrid(const Eigen::Matrix3Xd& coordinates, double 
 
 SegmentProjection MasterSurface::walk(int start, const Eigen::Vector2d& guess,
                                       const Eigen::Vector3d& point,
-                                      const Eigen::Matrix3Xd& coordinates) const {
+                                      const Eigen::Matrix3Xd& coordinates, bool hopped) const {
+  const double stayTolerance = hopped ? kHopStayTolerance : kStayOnSegmentTolerance;
   std::vector<int> visited;
   std::vector<Eigen::Vector2d> visitedXi;
   auto projectionOn = [&](int segment, const Eigen::Vector2d& xi) -> SegmentProjection {
@@ -232,7 +244,7 @@ SegmentProjection MasterSurface::walk(int start, const Eigen::Vector2d& guess,
       return notFound;
     }
     visitedXi.push_back(p.xi);
-    if (accepts(segment, p.xi, hop == 0 ? kStayOnSegmentTolerance : kInsideTolerance)) {
+    if (accepts(segment, p.xi, hop == 0 ? stayTolerance : kInsideTolerance)) {
       return projectionOn(segment, p.xi);
     }
     int next = -1;

@@ -59,9 +59,11 @@ class MasterSurface {
   void buildSearchGrid(const Eigen::Matrix3Xd& coordinates, double reachInSegments);
 
   // Local search: project on `start`, walk to edge neighbours while the parameter leaves the
-  // segment. Returns a segment only if the point projects inside one.
+  // segment. Returns a segment only if the point projects inside one. A point that has `hopped`
+  // back and forth over an edge in this step keeps `start` while it leaves by up to
+  // kHopStayTolerance (master_surface.cpp).
   SegmentProjection walk(int start, const Eigen::Vector2d& guess, const Eigen::Vector3d& point,
-                         const Eigen::Matrix3Xd& coordinates) const;
+                         const Eigen::Matrix3Xd& coordinates, bool hopped = false) const;
   // Global search through the grid (needs buildSearchGrid): the closest inside projection.
   SegmentProjection search(const Eigen::Vector3d& point, const Eigen::Matrix3Xd& coordinates) const;
 

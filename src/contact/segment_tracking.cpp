@@ -31,7 +31,9 @@ LocalStatus SegmentTracker::track(std::vector<PairPoint>& points, const Eigen::M
     PairPoint& point = points[i];
     const Eigen::Vector3d position = slavePosition(point, x);
     SegmentProjection found;
-    if (point.segment >= 0) found = master_.walk(point.segment, point.xi, position, x);
+    if (point.segment >= 0) {
+      found = master_.walk(point.segment, point.xi, position, x, point.hopped());
+    }
     const bool brokeDownOnOwnSegment = found.projectionBrokeDown;
     if (!found.found()) found = master_.search(position, x);
     if (!found.found() && brokeDownOnOwnSegment) {
@@ -43,6 +45,7 @@ LocalStatus SegmentTracker::track(std::vector<PairPoint>& points, const Eigen::M
     }
     if (found.segment != point.segment) {
       point.segment = found.segment;
+      ++point.segmentChangesInStep;
       moved.push_back(static_cast<int>(i));
     }
     point.xi = found.xi;
