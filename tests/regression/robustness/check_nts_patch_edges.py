@@ -9,7 +9,6 @@ cut-backs by t = 0.51 before kHopStayTolerance). Asserted: the run completes wit
 (line-search retries allowed, at most 2: measured 2, in steps 8 and 21), in at most 4 Newton
 iterations per step on average in steps 22-45 (measured 3.33)."""
 import os
-import subprocess
 import sys
 
 import stress_script
@@ -18,15 +17,8 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
 import progress_lines  # noqa: E402  (tests/support)
 
 args = stress_script.parse_args()
-source = stress_script.ironing_deck_text(args, "ironing_nts_mu03_wide_smooth.deck")
-assert "steps 100 dt=0.01" in source and "surface=smooth" in source
-deck = os.path.join(args.scratch, "ironing_nts_smooth_45.deck")
-open(deck, "w").write(source.replace("steps 100 dt=0.01", "steps 45 dt=0.01"))
-r = subprocess.run([args.covcontact, "run", "--threads", "1", "--newton-log", deck, "-o",
-                    os.path.join(args.scratch, "ironing_nts_smooth_45.h5")],
-                   capture_output=True, text=True, timeout=280)
-if r.returncode != 0:
-    sys.exit(f"the run failed: exit {r.returncode}\n{r.stdout[-3000:]}{r.stderr[-2000:]}")
+r = stress_script.run_ironing_steps(args, "ironing_nts_mu03_wide_smooth.deck", 45,
+                                    must_contain=("surface=smooth",))
 failures = []
 cutbacks = [line for line in (r.stdout + r.stderr).splitlines() if line.startswith("cut-back at")]
 retries = [line for line in cutbacks if "retrying the step with line search" in line]

@@ -9,7 +9,6 @@ points: 100-134 points then switched stick -> slip at iteration 2 of each of the
 took 6, 7, 5, 6, 6 iterations (30). Asserted: at most 30 points change state at iteration 2
 (measured 2-10) and at most 27 iterations in the five steps (measured 25)."""
 import os
-import subprocess
 import sys
 
 import stress_script
@@ -18,15 +17,8 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
 import progress_lines  # noqa: E402  (tests/support)
 
 args = stress_script.parse_args()
-source = stress_script.ironing_deck_text(args, "ironing_sts_mu03_wide_smooth.deck")
-assert "steps 100 dt=0.01" in source and "surface=smooth" in source
-deck = os.path.join(args.scratch, "ironing_smooth_45.deck")
-open(deck, "w").write(source.replace("steps 100 dt=0.01", "steps 45 dt=0.01"))
-r = subprocess.run([args.covcontact, "run", "--threads", "1", "--newton-log", deck, "-o",
-                    os.path.join(args.scratch, "ironing_smooth_45.h5")],
-                   capture_output=True, text=True, timeout=280)
-if r.returncode != 0:
-    sys.exit(f"the run failed: exit {r.returncode}\n{r.stdout[-2000:]}{r.stderr[-2000:]}")
+r = stress_script.run_ironing_steps(args, "ironing_sts_mu03_wide_smooth.deck", 45,
+                                    must_contain=("surface=smooth",))
 failures = []
 total = 0
 steps = progress_lines.converged_steps(r.stdout)

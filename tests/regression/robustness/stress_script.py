@@ -1,10 +1,12 @@
 """Shared by the issue-14 scripts of this folder (check_newton_diagnostics.py,
-check_quadratic_tail.py, check_ironing_edge.py,
-check_step_start_sliding.py): their command line (--covcontact, --decks
-input/stress, --scratch), the exact-tangent copy of the large-slip deck they run, and the ironing
-decks with absolute paths."""
+check_quadratic_tail.py, check_ironing_edge.py, check_step_start_sliding.py,
+check_nts_patch_edges.py): their command line (--covcontact, --decks input/stress, --scratch),
+the exact-tangent copy of the large-slip deck they run, the ironing decks with absolute paths,
+and a run of an ironing deck's first steps."""
 import argparse
 import os
+import subprocess
+import sys
 
 
 def parse_args():
@@ -36,3 +38,21 @@ def ironing_deck_text(args, name):
     mesh = os.path.abspath(os.path.join(args.decks, "../../meshes/ironing.geo"))
     return (source.replace('"ironing_model.inc"', '"' + os.path.join(here, "ironing_model.inc") + '"')
             .replace('"../../../meshes/ironing.geo"', '"' + mesh + '"'))
+
+
+def run_ironing_steps(args, name, steps, must_contain=()):
+    """Runs input/stress/ironing/NAME (100 steps of dt = 0.01) cut to its first `steps` steps,
+    one thread, with --newton-log, in the scratch folder; checks that the deck says each of
+    `must_contain`, exits with the run's output if it fails, and returns the CompletedProcess."""
+    source = ironing_deck_text(args, name)
+    for text in ("steps 100 dt=0.01",) + tuple(must_contain):
+        assert text in source, f"{name} no longer says {text!r}"
+    stem = f"{os.path.splitext(name)[0]}_{steps}"
+    deck = os.path.join(args.scratch, stem + ".deck")
+    open(deck, "w").write(source.replace("steps 100 dt=0.01", f"steps {steps} dt=0.01"))
+    r = subprocess.run([args.covcontact, "run", "--threads", "1", "--newton-log", deck, "-o",
+                        os.path.join(args.scratch, stem + ".h5")],
+                       capture_output=True, text=True, timeout=280)
+    if r.returncode != 0:
+        sys.exit(f"the run failed: exit {r.returncode}\n{r.stdout[-3000:]}{r.stderr[-2000:]}")
+    return r
