@@ -91,8 +91,8 @@ class LinearSolver {
   virtual void factorize(const SparseMatrix& matrix) = 0;
   virtual Eigen::VectorXd solve(const Eigen::VectorXd& rhs) = 0;
   // The factor alone applied to rhs, without refinement against the factorized matrix: the
-  // preconditioner of a later tangent of the same pattern (factor_reuse.hpp), after the matrix
-  // passed to factorize() may have been overwritten by that tangent.
+  // preconditioner of a later tangent (factor_reuse.hpp), after the matrix passed to
+  // factorize() may have been overwritten, or given another pattern, by that tangent.
   virtual Eigen::VectorXd applyFactor(const Eigen::VectorXd& rhs) { return solve(rhs); }
   // Frees the numeric factor and keeps the symbolic analysis: a solver that another one has
   // replaced for now (CHOLMOD while the system is unsymmetric) holds no factor memory.
