@@ -106,10 +106,9 @@ SolverStatistics LoadStepper::statistics() const {
 
 RunSummary LoadStepper::run(const StartState& start) {
   summary_ = RunSummary{};
-  newton_ = std::make_unique<Newton>(problem_, observer_, Newton::Clock::now(),
-                                     linearSolver_.method, dumps_);
+  newton_ =
+      std::make_unique<Newton>(problem_, observer_, Newton::Clock::now(), linearSolver_, dumps_);
   newton_->setTangentCheck(tangentCheck_.first, tangentCheck_.second);
-  newton_->setFactorReuse(linearSolver_.reuseFactor);
   const Eigen::Index size = 3 * static_cast<Eigen::Index>(problem_.dofMap().numNodes());
   PhaseRun run;
   run.displacement =

@@ -125,12 +125,13 @@ bool residualCycles(const std::vector<double>& norms) {
 }  // namespace
 
 Newton::Newton(NonlinearProblem& problem, StepObserver& observer, Clock::time_point runStart,
-               LinearSolverSpec::Method linearSolver, std::vector<TangentDumpRequest> dumps)
+               const LinearSolverSpec& linearSolver, std::vector<TangentDumpRequest> dumps)
     : problem_(problem),
       observer_(observer),
       runStart_(runStart),
-      linear_(linearSolver),
+      linear_(linearSolver.method),
       dumps_(std::move(dumps)) {
+  linear_.setFactorReuse(linearSolver.reuseFactor);
   linear_.setNotifier([this](const std::string& line) { observer_.note(line); });
 }
 

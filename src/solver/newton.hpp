@@ -115,8 +115,7 @@ class Newton {
  public:
   using Clock = std::chrono::steady_clock;
   Newton(NonlinearProblem& problem, StepObserver& observer, Clock::time_point runStart,
-         LinearSolverSpec::Method linearSolver = LinearSolverSpec::Method::Auto,
-         std::vector<TangentDumpRequest> dumps = {});
+         const LinearSolverSpec& linearSolver = {}, std::vector<TangentDumpRequest> dumps = {});
 
   // `displacement` (3 * numNodes) holds the converged state at step.previousTime on entry and
   // the solution at step.time when converged; otherwise it is left in between (the caller
@@ -135,7 +134,6 @@ class Newton {
   int assemblies() const { return assemblies_; }
   double assemblySeconds() const { return assemblySeconds_; }
   const TangentSolver& linearSolver() const { return linear_; }
-  void setFactorReuse(bool reuse) { linear_.setFactorReuse(reuse); }
   // Diagnostics (covcontact run --check-tangent): at this step and iteration, compare the
   // assembled tangent with central differences of the residual (printed to stderr).
   void setTangentCheck(int step, int iteration) { tangentCheck_ = {step, iteration}; }
