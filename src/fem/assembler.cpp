@@ -64,6 +64,7 @@ struct LocalBuffers {
   std::vector<int> equations;      // free equation of each local dof, or -1
   std::vector<int> prescribed;     // prescribed index of each local dof, or -1
   std::vector<int> firstEquation;  // smallest free equation of each local node, or -1
+  std::vector<int> rowOffsets;     // each local node's first row within a block column
 };
 
 // The first failure one thread met (items are visited in ascending order within a color).
@@ -98,27 +99,41 @@ struct ThreadBuffers {
       local.equations.resize(3 * numNodes);
       local.prescribed.resize(3 * numNodes);
       local.firstEquation.resize(numNodes);
+      local.rowOffsets.resize(numNodes);
     }
     if (withTangent && local.tangent.rows() != size) local.tangent.resize(size, size);
     return local;
   }
 };
 
-// Adds local column `column` to a compressed block column, rows by local node. Rows of one
-// node's free dofs are consecutive equations and therefore consecutive entries of the column:
-// one binary search per (column, node) pair locates them.
-void scatterColumn(const LocalBuffers& local, int localColumn, int blockColumn,
-                   SparseMatrix& block) {
+// Where each local node's rows start in the block columns of one column node. Every column of a
+// node, free (in `free`) or prescribed (in `coupling`), has the same rows: the free equations
+// of the node's neighbours, ascending (sparsity_pattern.cpp). So one binary search per
+// (column node, row node) pair serves all three columns of the node; rows of one node's free
+// dofs are consecutive equations and therefore consecutive entries.
+void locateRows(LocalBuffers& local, const SparseMatrix& block, int blockColumn) {
   const int* rowsBegin = block.innerIndexPtr() + block.outerIndexPtr()[blockColumn];
   const int* rowsEnd = block.innerIndexPtr() + block.outerIndexPtr()[blockColumn + 1];
+  for (std::size_t k = 0; k < local.firstEquation.size(); ++k) {
+    const int first = local.firstEquation[k];
+    if (first < 0) continue;
+    const int* found = std::lower_bound(rowsBegin, rowsEnd, first);
+    assert(found != rowsEnd && *found == first && "pattern lacks a node pair of an item");
+    local.rowOffsets[k] = static_cast<int>(found - rowsBegin);
+  }
+}
+
+// Adds local column `localColumn` to a compressed block column whose rows locateRows() found.
+void scatterColumn(const LocalBuffers& local, int localColumn, int blockColumn,
+                   SparseMatrix& block) {
+  const std::ptrdiff_t columnStart = block.outerIndexPtr()[blockColumn];
   double* values = block.valuePtr();
   const std::size_t numNodes = local.firstEquation.size();
   for (std::size_t k = 0; k < numNodes; ++k) {
     const int first = local.firstEquation[k];
     if (first < 0) continue;
-    const int* found = std::lower_bound(rowsBegin, rowsEnd, first);
-    assert(found != rowsEnd && *found == first && "pattern lacks a node pair of an item");
-    const std::ptrdiff_t base = found - block.innerIndexPtr();
+    const std::ptrdiff_t base = columnStart + local.rowOffsets[k];
+    assert(block.innerIndexPtr()[base] == first && "columns of one node differ in rows");
     for (int component = 0; component < 3; ++component) {
       const int row = local.equations[3 * k + component];
       if (row >= 0) {
@@ -241,11 +256,17 @@ void Assembler::Impl::evaluateItem(Contribution& contribution, std::size_t item,
       if (local.firstEquation[k] < 0) local.firstEquation[k] = dofs.equation(dof);
     }
   }
-  for (int column = 0; column < static_cast<int>(3 * nodes.size()); ++column) {
-    if (local.equations[column] >= 0) {
-      scatterColumn(local, column, local.equations[column], tangent->free);
-    } else if (local.prescribed[column] >= 0) {
-      scatterColumn(local, column, local.prescribed[column], tangent->coupling);
+  for (std::size_t m = 0; m < nodes.size(); ++m) {
+    bool rowsLocated = false;
+    for (int component = 0; component < 3; ++component) {
+      const int column = static_cast<int>(3 * m) + component;
+      const bool free = local.equations[column] >= 0;
+      if (!free && local.prescribed[column] < 0) continue;
+      SparseMatrix& block = free ? tangent->free : tangent->coupling;
+      const int blockColumn = free ? local.equations[column] : local.prescribed[column];
+      if (!rowsLocated) locateRows(local, block, blockColumn);
+      rowsLocated = true;
+      scatterColumn(local, column, blockColumn, block);
     }
   }
 }
