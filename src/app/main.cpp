@@ -13,6 +13,7 @@
 #include <string>
 
 #include "app/commands.hpp"
+#include "app/openmp_environment.hpp"
 #include "common/errors.hpp"
 #include "deck/spec_choices.hpp"
 #include "parallel/process_group.hpp"
@@ -58,25 +59,11 @@ CLI::Validator wholeNumberFromOne() {
       "INT>=1");
 }
 
-// OpenMP settings that libgomp reads only from the environment, once, when it is loaded (before
-// main), so a process that did not get them re-executes itself once with them set (a user's
-// own setting is kept):
-//  - OMP_WAIT_POLICY=passive: idle OpenMP threads sleep instead of spinning ~300 000 times
-//    after each parallel region; on a machine whose other core is busy that spinning took a
-//    third of the samples (issue 13).
-//  - OMP_THREAD_LIMIT=N for --threads N: CHOLMOD's supernodal factorization asks for 4 threads
-//    whatever omp_set_num_threads says (CHOLMOD_OMP_NUM_THREADS is compiled into SuiteSparse
-//    5), so `--threads 1` ran 4 threads; the thread limit caps that too.
-// The re-execution costs one more program start (dynamic linking, ~0.1 s CPU).
+// Started directly rather than through the `covcontact` launcher (app/launcher.cpp), the
+// program puts the OpenMP settings of a run into the environment itself and re-executes itself
+// once with them (libgomp reads them only when it is loaded).
 void applyOpenMpEnvironment(char** argv, int threads) {
-  bool changed = false;
-  if (std::getenv("OMP_WAIT_POLICY") == nullptr) {
-    changed |= setenv("OMP_WAIT_POLICY", "passive", 1) == 0;
-  }
-  if (threads > 0 && std::getenv("OMP_THREAD_LIMIT") == nullptr) {
-    changed |= setenv("OMP_THREAD_LIMIT", std::to_string(threads).c_str(), 1) == 0;
-  }
-  if (changed) execv("/proc/self/exe", argv);
+  if (cc::app::setOpenMpEnvironment(threads)) execv("/proc/self/exe", argv);
   // exec failed (no /proc): go on with the defaults
 }
 

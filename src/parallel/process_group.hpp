@@ -17,6 +17,8 @@
 #include <utility>
 #include <vector>
 
+#include "parallel/launch_environment.hpp"
+
 namespace cc {
 
 class ProcessGroup {
@@ -46,12 +48,6 @@ class ProcessGroup {
   // processes together, counting what each message carries (not the transport's overhead).
   virtual double bytesMoved() const { return 0; }
 };
-
-// Number of processes the launcher (mpirun, srun) started, read from its environment before MPI
-// is initialized; 1 when not launched by one.
-int launchedProcesses();
-// This process's rank among them, from the same environment (0 when not launched by one).
-int launchedRank();
 
 // The process's group: the MPI one when launchedProcesses() > 1 (loads the PETSc plugin and
 // initializes MPI on first call), else the one-process group.

@@ -360,8 +360,8 @@ def interrupt_case(args):
 
 
 # One thread everywhere: no libgomp or OpenBLAS thread stacks and arenas (which made lower limits
-# end in libgomp's "Thread creation failed" abort), and the variables set beforehand so that the
-# command does not re-execute itself to set them.
+# end in libgomp's "Thread creation failed" abort); the OpenMP variables are those the launcher
+# would set, so that the measured process is the program from its start.
 ONE_THREAD = {"OMP_WAIT_POLICY": "passive", "OMP_THREAD_LIMIT": "1", "OPENBLAS_NUM_THREADS": "1"}
 OOM_DECK = "out_of_memory_in_contact.deck"
 OOM_STEPS_APART = 2  # steps 1-2: the cube hangs free; step 3 touches the plane

@@ -1,0 +1,106 @@
+"""The `covcontact` launcher (src/app/launcher.cpp): it puts a run's OpenMP settings into the
+environment and executes covcontact-engine in its own place, so that the program starts once.
+
+  --case environment: `run --threads 1` and `--threads 2` of the ironing die deck; while the
+      run goes, its process is the engine (/proc/PID/exe), its environment has
+      OMP_WAIT_POLICY=passive and OMP_THREAD_LIMIT=N, and --threads 1 means one OS thread;
+      a user's own OMP_WAIT_POLICY is kept.
+  --case missing_program: the launcher alone, without the engine beside it, says which file it
+      could not start and exits 70 (an incomplete installation is an internal error).
+"""
+import os
+import shutil
+import subprocess
+import sys
+import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import stress_script  # noqa: E402
+
+WATCH_SECONDS = 4.0  # the die deck's press takes longer: set-up, factorizations and solves seen
+
+
+def fail(message):
+    sys.exit(f"FAIL: {message}")
+
+
+def environment_of(pid):
+    with open(f"/proc/{pid}/environ", "rb") as f:
+        entries = f.read().split(b"\0")
+    return dict(e.decode().split("=", 1) for e in entries if b"=" in e)
+
+
+def thread_count(pid):
+    with open(f"/proc/{pid}/status") as f:
+        for line in f:
+            if line.startswith("Threads:"):
+                return int(line.split()[1])
+    return 0
+
+
+def watch_run(args, threads, extra_environment):
+    """Starts the die deck on `threads` threads, watches it for WATCH_SECONDS and stops it;
+    returns (its environment as the engine saw it, the most OS threads it had)."""
+    deck = os.path.join(args.scratch, "ironing_die.deck")
+    open(deck, "w").write(stress_script.ironing_deck_text(args, "ironing_sts_mu03_wide.deck"))
+    environment = {k: v for k, v in os.environ.items() if not k.startswith("OMP_")}
+    environment.update(extra_environment)
+    process = subprocess.Popen([args.covcontact, "run", deck, "--threads", str(threads), "-o",
+                                os.path.join(args.scratch, f"die_{threads}.h5")],
+                               env=environment, stdout=subprocess.DEVNULL,
+                               stderr=subprocess.PIPE, text=True)
+    seen, most_threads, started = None, 0, time.time()
+    try:
+        while time.time() - started < WATCH_SECONDS and process.poll() is None:
+            try:
+                if os.readlink(f"/proc/{process.pid}/exe").endswith("/covcontact-engine"):
+                    seen = seen or environment_of(process.pid)
+                    most_threads = max(most_threads, thread_count(process.pid))
+            except (FileNotFoundError, ProcessLookupError):
+                break
+            time.sleep(0.005)
+    finally:
+        process.kill()
+        process.wait()
+    if seen is None:
+        fail(f"--threads {threads}: the process never became covcontact-engine "
+             f"(exit {process.returncode}): {process.stderr.read()[-2000:]}")
+    return seen, most_threads
+
+
+def environment_case(args):
+    for threads in (1, 2):
+        seen, most = watch_run(args, threads, {})
+        print(f"--threads {threads}: OMP_WAIT_POLICY={seen.get('OMP_WAIT_POLICY')} "
+              f"OMP_THREAD_LIMIT={seen.get('OMP_THREAD_LIMIT')}, at most {most} OS threads")
+        if seen.get("OMP_WAIT_POLICY") != "passive" or seen.get("OMP_THREAD_LIMIT") != str(threads):
+            fail(f"--threads {threads}: the engine did not get the OpenMP settings")
+        if most > threads:
+            fail(f"--threads {threads}: the run had {most} OS threads")
+    seen, _ = watch_run(args, 1, {"OMP_WAIT_POLICY": "active"})
+    if seen.get("OMP_WAIT_POLICY") != "active":
+        fail("a user's OMP_WAIT_POLICY=active was overridden")
+    print("a user's OMP_WAIT_POLICY=active is kept")
+
+
+def missing_program_case(args):
+    alone = os.path.join(args.scratch, "covcontact")
+    shutil.copy(args.covcontact, alone)
+    r = subprocess.run([alone, "run", "deck.deck"], capture_output=True, text=True, timeout=60)
+    expected = f"cannot start the program {os.path.join(args.scratch, 'covcontact-engine')}"
+    print(f"exit {r.returncode}: {r.stderr.strip()}")
+    if r.returncode != 70 or expected not in r.stderr:
+        fail(f"expected exit 70 and '{expected}'")
+
+
+def main():
+    case = sys.argv.pop(sys.argv.index("--case") + 1)
+    sys.argv.remove("--case")
+    args = stress_script.parse_args()
+    shutil.rmtree(args.scratch, ignore_errors=True)
+    os.makedirs(args.scratch)
+    {"environment": environment_case, "missing_program": missing_program_case}[case](args)
+
+
+if __name__ == "__main__":
+    main()
