@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <mutex>
 #include <stdexcept>
+#include <vector>
 
 #include "common/errors.hpp"
 #include "common/stopwatch.hpp"
@@ -152,7 +153,10 @@ class CholmodSolver final : public LinearSolver {
     if (factor_) cholmod_free_factor(&factor_, &common_);
     if (symbolic_) cholmod_free_factor(&symbolic_, &common_);
     cholmod_sparse view = viewOf(matrix);
-    symbolic_ = cholmod_analyze(&view, &common_);
+    if (!analyzeWithKeptOrdering(view)) {
+      symbolic_ = cholmod_analyze(&view, &common_);
+      if (symbolic_) keepOrdering();
+    }
     if (!symbolic_) {
       throwIfOutOfMemory("analysis", matrix);
       throw std::runtime_error(fmt::format("CHOLMOD analysis failed (status {})", common_.status));
@@ -239,6 +243,37 @@ class CholmodSolver final : public LinearSolver {
   }
 
  private:
+  // Ordering reuse (as in umfpack_solver.cpp): a contact run analyzes a new pattern whenever a
+  // contact point changes its master segment, and the fill-reducing ordering (nested
+  // dissection) is most of an analysis. The permutation of the last fresh analysis is given to
+  // CHOLMOD for a new pattern of the same size unless the flops it then counts exceed
+  // kStaleOrderingFlops times those of the fresh analysis; the pattern is then ordered afresh.
+  static constexpr double kStaleOrderingFlops = 1.2;
+
+  bool analyzeWithKeptOrdering(cholmod_sparse& view) {
+    if (ordering_.empty() || ordering_.size() != view.nrow) return false;
+    const int methods = common_.nmethods;
+    const auto method = common_.method[0];
+    common_.nmethods = 1;
+    common_.method[0].ordering = CHOLMOD_GIVEN;
+    symbolic_ = cholmod_analyze_p(&view, ordering_.data(), nullptr, 0, &common_);
+    common_.nmethods = methods;
+    common_.method[0] = method;
+    if (symbolic_ && common_.fl <= kStaleOrderingFlops * freshOrderingFlops_) {
+      ++statistics_.reusedOrderings;
+      return true;
+    }
+    if (symbolic_) cholmod_free_factor(&symbolic_, &common_);
+    ordering_.clear();
+    return false;
+  }
+
+  void keepOrdering() {
+    const int* permutation = static_cast<const int*>(symbolic_->Perm);
+    ordering_.assign(permutation, permutation + symbolic_->n);
+    freshOrderingFlops_ = common_.fl;
+  }
+
   // Values plus integer indices of the factor (supernodal: x and s; simplicial: x and i).
   double factorBytes() const {
     const double indices = factor_->is_super ? static_cast<double>(factor_->ssize)
@@ -250,6 +285,8 @@ class CholmodSolver final : public LinearSolver {
 
   cholmod_common common_{};
   cholmod_factor* symbolic_ = nullptr;  // the analysis of the current pattern
+  std::vector<int> ordering_;           // permutation of the last fresh analysis
+  double freshOrderingFlops_ = 0;       // counted by that analysis
   cholmod_factor* factor_ = nullptr;    // numeric factor, a copy of symbolic_ factorized
 };
 

@@ -38,6 +38,9 @@ struct LinearSolverStatistics {
   // factorize() calls that kept an earlier preconditioner: the AMG hierarchy of an iterative
   // backend (petsc_solver.cpp), or the factor of a direct one (factor_reuse.hpp).
   int reusedPreconditioners = 0;
+  // Analyses that kept the fill-reducing ordering of an earlier pattern of the same size
+  // (CHOLMOD and UMFPACK: a contact pattern differs from the last by a few couplings).
+  int reusedOrderings = 0;
   // Several processes: bytes this process sent for matrix entries of rows another process
   // owns, and received of the solution (the direct solver's own traffic is not counted).
   double matrixBytesSent = 0;

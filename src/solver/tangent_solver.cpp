@@ -27,6 +27,7 @@ LinearSolverStatistics& LinearSolverStatistics::operator+=(const LinearSolverSta
   krylovIterations += other.krylovIterations;
   krylovFallbacks += other.krylovFallbacks;
   reusedPreconditioners += other.reusedPreconditioners;
+  reusedOrderings += other.reusedOrderings;
   matrixBytesSent += other.matrixBytesSent;
   solutionBytesReceived += other.solutionBytesReceived;
   return *this;

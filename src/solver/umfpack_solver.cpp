@@ -54,9 +54,11 @@ class UmfpackSolver final : public LinearSolver {
     release();
     copyIndices(matrix);
     const SuiteSparse_long size = matrix.rows();
+    const bool reusedOrdering = analyzeWithKeptOrdering(matrix);
     const SuiteSparse_long status =
-        umfpack_dl_symbolic(size, size, columnStarts_.data(), rowIndices_.data(), matrix.valuePtr(),
-                            &symbolic_, control_, info_);
+        reusedOrdering ? UMFPACK_OK
+                       : umfpack_dl_symbolic(size, size, columnStarts_.data(), rowIndices_.data(),
+                                             matrix.valuePtr(), &symbolic_, control_, info_);
     throwIfOutOfMemory(status, "analysis", matrix);
     if (status != UMFPACK_OK) {
       throw std::runtime_error(fmt::format("UMFPACK analysis failed (status {})", status));
@@ -65,6 +67,7 @@ class UmfpackSolver final : public LinearSolver {
     // (which overwrites info_).
     factorEstimate_ = info_[UMFPACK_NUMERIC_SIZE_ESTIMATE] * info_[UMFPACK_SIZE_OF_UNIT];
     peakEstimate_ = info_[UMFPACK_PEAK_MEMORY_ESTIMATE] * info_[UMFPACK_SIZE_OF_UNIT];
+    if (!reusedOrdering) keepOrdering(matrix);
     size_ = rows(matrix);
     ++statistics_.analyses;
     statistics_.analysisSeconds += secondsSince(start);
@@ -96,6 +99,7 @@ class UmfpackSolver final : public LinearSolver {
       throw std::runtime_error(fmt::format("UMFPACK factorization failed (status {})", status));
     }
     statistics_.largestFactorFlops = std::max(statistics_.largestFactorFlops, info_[UMFPACK_FLOPS]);
+    judgeOrdering(info_[UMFPACK_FLOPS]);
     // UMFPACK_NUMERIC_SIZE: the final size of the Numeric object (L, U, indices), in Units.
     statistics_.largestFactorBytes = std::max(
         statistics_.largestFactorBytes, info_[UMFPACK_NUMERIC_SIZE] * info_[UMFPACK_SIZE_OF_UNIT]);
@@ -154,6 +158,58 @@ class UmfpackSolver final : public LinearSolver {
     if (symbolic_) umfpack_dl_free_symbolic(&symbolic_);
     matrix_ = nullptr;
   }
+  // Ordering reuse. The fill-reducing ordering (METIS on A + A^T) is most of an analysis, and a
+  // contact run analyzes a new pattern whenever a contact point changes its master segment: on
+  // the die-dragging model 73 analyses in 40 steps, at 23 ms each against 68 ms per
+  // factorization. A new pattern differs from the last by a few contact couplings, so the
+  // ordering of the last fresh analysis still serves: it is given to UMFPACK (qsymbolic, with
+  // the strategy that analysis chose) until a factorization needs more than kStaleOrderingFlops
+  // times the flops of the first factorization with it; the next pattern is ordered afresh.
+  // (The analysis's own flop estimate is an upper bound that hardly moves: on the die model
+  // it grew by 6 % while the factorizations' flops grew by 60 %.)
+  static constexpr double kStaleOrderingFlops = 1.2;
+
+  bool analyzeWithKeptOrdering(const SparseMatrix& matrix) {
+    if (orderingStale_ || ordering_.empty() ||
+        static_cast<Eigen::Index>(ordering_.size()) != matrix.cols()) {
+      return false;
+    }
+    const SuiteSparse_long size = matrix.rows();
+    const SuiteSparse_long status = umfpack_dl_qsymbolic(
+        size, size, columnStarts_.data(), rowIndices_.data(), matrix.valuePtr(), ordering_.data(),
+        &symbolic_, givenOrderingControl_, info_);
+    if (status == UMFPACK_OK) {
+      ++statistics_.reusedOrderings;
+      return true;
+    }
+    if (symbolic_) umfpack_dl_free_symbolic(&symbolic_);
+    return false;
+  }
+
+  void keepOrdering(const SparseMatrix& matrix) {
+    ordering_.assign(static_cast<std::size_t>(matrix.cols()), 0);
+    if (umfpack_dl_get_symbolic(nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr,
+                                ordering_.data(), nullptr, nullptr, nullptr, nullptr, nullptr,
+                                nullptr, nullptr, symbolic_) != UMFPACK_OK) {
+      ordering_.clear();
+      return;
+    }
+    std::copy(std::begin(control_), std::end(control_), std::begin(givenOrderingControl_));
+    givenOrderingControl_[UMFPACK_STRATEGY] =
+        info_[UMFPACK_STRATEGY_USED] == UMFPACK_STRATEGY_SYMMETRIC ? UMFPACK_STRATEGY_SYMMETRIC
+                                                                   : UMFPACK_STRATEGY_UNSYMMETRIC;
+    freshOrderingFlops_ = 0;
+    orderingStale_ = false;
+  }
+
+  void judgeOrdering(double flops) {
+    if (freshOrderingFlops_ == 0) {
+      freshOrderingFlops_ = flops;
+    } else if (flops > kStaleOrderingFlops * freshOrderingFlops_) {
+      orderingStale_ = true;
+    }
+  }
+
   // Eigen's 32-bit column starts and row indices widened for the dl routines.
   void copyIndices(const SparseMatrix& matrix) {
     columnStarts_.assign(matrix.outerIndexPtr(), matrix.outerIndexPtr() + matrix.cols() + 1);
@@ -194,6 +250,10 @@ class UmfpackSolver final : public LinearSolver {
   const SparseMatrix* matrix_ = nullptr;
   std::vector<SuiteSparse_long> columnStarts_, rowIndices_;
   int size_ = -1;
+  std::vector<SuiteSparse_long> ordering_;        // column preordering of the last fresh analysis
+  double givenOrderingControl_[UMFPACK_CONTROL];  // control_ with that analysis's strategy
+  double freshOrderingFlops_ = 0;                 // of the first factorization with it
+  bool orderingStale_ = false;
   double factorEstimate_ = 0;  // bytes, from the last analysis
   double peakEstimate_ = 0;
 };

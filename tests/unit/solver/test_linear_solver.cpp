@@ -4,7 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
+#include <random>
 
 #include "common/errors.hpp"
 #include "solver/factor_reuse.hpp"
@@ -100,6 +102,45 @@ TEST(LinearSolver, UmfpackSolvesUnsymmetricSystem) {
   const Eigen::VectorXd x = solver->solve(rhs);
   const Eigen::VectorXd reference = Eigen::MatrixXd(matrix).partialPivLu().solve(rhs);
   EXPECT_LT((x - reference).norm(), 1e-12 * reference.norm());
+}
+
+// A contact pattern differs from the last by a few couplings: analyzed again, it keeps the
+// fill-reducing ordering of the last fresh analysis. The same grid renumbered at random is an
+// unrelated pattern on which that ordering fills in far more: CHOLMOD, which counts the flops
+// of an ordering in its analysis, orders it afresh at once; UMFPACK (whose analysis only bounds
+// the flops) learns it from the factorization and orders its next pattern afresh.
+TEST(LinearSolver, APatternCloseToTheLastKeepsItsOrderingAndAnUnrelatedOneIsOrderedAfresh) {
+  const SparseMatrix base = gridLaplacian(30, 0.0);
+  SparseMatrix coupled = base;  // diagonal neighbours coupled in a few cells, still SPD
+  for (int k : {40, 41, 300, 512, 777}) {
+    coupled.coeffRef(k, k + 31) -= 0.1;
+    coupled.coeffRef(k + 31, k) -= 0.1;
+    coupled.coeffRef(k, k) += 0.1;
+    coupled.coeffRef(k + 31, k + 31) += 0.1;
+  }
+  coupled.makeCompressed();
+  Eigen::VectorXi order = Eigen::VectorXi::LinSpaced(base.rows(), 0, base.rows() - 1);
+  std::shuffle(order.begin(), order.end(), std::mt19937(7));
+  const Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> shuffle(order);
+  SparseMatrix renumbered = shuffle * base * shuffle.transpose();
+  renumbered.makeCompressed();
+  const std::vector<const SparseMatrix*> sequence{&base, &coupled, &renumbered, &renumbered};
+  // Orderings kept after each analysis of the sequence.
+  const std::vector<int> cholmodReuses{0, 1, 1, 2}, umfpackReuses{0, 1, 2, 2};
+  for (const bool cholmod : {true, false}) {
+    SCOPED_TRACE(cholmod ? "CHOLMOD" : "UMFPACK");
+    auto solver = cholmod ? makeCholmodSolver() : makeUmfpackSolver();
+    for (std::size_t k = 0; k < sequence.size(); ++k) {
+      const SparseMatrix& matrix = *sequence[k];
+      solver->analyzePattern(matrix);
+      solver->factorize(matrix);
+      const Eigen::VectorXd rhs = rightHandSide(matrix.rows());
+      const Eigen::VectorXd reference = Eigen::MatrixXd(matrix).ldlt().solve(rhs);
+      EXPECT_LT((solver->solve(rhs) - reference).norm(), 1e-12 * reference.norm());
+      EXPECT_EQ(solver->statistics().reusedOrderings, (cholmod ? cholmodReuses : umfpackReuses)[k])
+          << "after analysis " << k + 1;
+    }
+  }
 }
 
 TEST(TangentSolver, IndefiniteSymmetricSystemFallsBackToUmfpackForTheRestOfTheStep) {
