@@ -14,14 +14,9 @@
 
 namespace cc::contact {
 
-// An item has at most 27 nodes (9 slave, 9 master, 9 of the previous master segment: the arrays
-// of PointLayout), so the derivatives fit a vector of at most 81 entries on the stack. With a
-// heap vector (Eigen::VectorXd) every AD operation allocated: malloc and free were ~7 % of the
-// samples of a die-dragging run (issue 13).
-inline constexpr int kMaxItemNodes = 27;
-inline constexpr int kMaxItemDofs = 3 * kMaxItemNodes;
-using AutoDiff =
-    Eigen::AutoDiffScalar<Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxItemDofs, 1>>;
+// Derivatives on the stack (ItemVector, contact_point.hpp): a heap vector allocated in every AD
+// operation.
+using AutoDiff = Eigen::AutoDiffScalar<ItemVector>;
 
 namespace detail {
 template <class T>

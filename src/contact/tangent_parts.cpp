@@ -8,7 +8,7 @@ namespace cc::contact {
 namespace {
 
 using Eigen::MatrixXd;
-using Eigen::VectorXd;
+using VectorXd = ItemVector;  // on the stack (contact_point.hpp)
 
 // A^T u: slave blocks N_s u, master blocks -N_m u (A maps dofs to delta r_s - delta rho).
 VectorXd positionTranspose(const PointKinematics<double>& kin, const PointLayout& layout,
@@ -47,9 +47,14 @@ VectorXd derivativeTranspose(const shape::SurfaceShape<double>& shape, const Poi
 // counts as flat, resp. as parametrized without connection terms.
 constexpr double kFlatTolerance = 1e-12;
 
-// K += scale (a b^T + b a^T)
+// K += scale (a b^T + b a^T), entry by entry: Eigen's expression built the sum in a heap
+// temporary of K's size at every call.
 void addSymmetricPair(MatrixXd& K, double scale, const VectorXd& a, const VectorXd& b) {
-  K.noalias() += scale * (a * b.transpose() + b * a.transpose());
+  for (Eigen::Index col = 0; col < K.cols(); ++col) {
+    for (Eigen::Index row = 0; row < K.rows(); ++row) {
+      K(row, col) += scale * (a[row] * b[col] + b[row] * a[col]);
+    }
+  }
 }
 
 }  // namespace

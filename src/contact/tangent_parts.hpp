@@ -38,13 +38,13 @@ struct TangentParts {
 struct TangentContext {
   const SurfaceFrame<double>* frame = nullptr;
   double weight = 0;
-  Eigen::VectorXd An;                                   // A^T n
-  Eigen::VectorXd Agap;                                 // A^T m, delta g = (A delta x) . m
-  bool fixedMasterPoint = false;                        // STAS: xi fixed, delta xi = 0
-  std::array<Eigen::VectorXd, 2> Arho;                  // A^T rho_i
-  std::array<Eigen::VectorXd, 2> ArhoContra;            // A^T rho^i
-  std::array<Eigen::VectorXd, 2> Ajn;                   // A_j^T n
-  std::array<std::array<Eigen::VectorXd, 2>, 2> Ajrho;  // [j][i] = A_j^T rho_i
+  ItemVector An;                                   // A^T n
+  ItemVector Agap;                                 // A^T m, delta g = (A delta x) . m
+  bool fixedMasterPoint = false;                   // STAS: xi fixed, delta xi = 0
+  std::array<ItemVector, 2> Arho;                  // A^T rho_i
+  std::array<ItemVector, 2> ArhoContra;            // A^T rho^i
+  std::array<ItemVector, 2> Ajn;                   // A_j^T n
+  std::array<std::array<ItemVector, 2>, 2> Ajrho;  // [j][i] = A_j^T rho_i
 };
 
 // gapDirection m: delta g = (delta r_s - delta rho) . m in the main parts. NTS and STS: m = n
