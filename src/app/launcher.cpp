@@ -17,14 +17,12 @@
 #include <string_view>
 
 #include "app/openmp_environment.hpp"
-#include "parallel/launch_environment.hpp"
 
 namespace {
 
 // `--threads N` or `--threads=N` of a `run` command line; 0 when absent or not a whole number
-// from 1 (the program then reports it). Under a launcher of several processes, one thread each
-// unless --threads says more (as the program decides).
-int runThreads(int argc, char** argv) {
+// from 1 (the program then reports it).
+int requestedThreads(int argc, char** argv) {
   int threads = 0;
   for (int i = 2; i < argc; ++i) {
     const std::string_view argument = argv[i];
@@ -38,7 +36,6 @@ int runThreads(int argc, char** argv) {
                   ? static_cast<int>(parsed)
                   : 0;
   }
-  if (threads == 0 && cc::launchedProcesses() > 1) threads = 1;
   return threads;
 }
 
@@ -55,7 +52,7 @@ std::string enginePath(const char* argv0) {
 
 int main(int argc, char** argv) {
   if (argc > 1 && std::string_view(argv[1]) == "run") {
-    cc::app::setOpenMpEnvironment(runThreads(argc, argv));
+    cc::app::setOpenMpEnvironment(cc::app::runThreads(requestedThreads(argc, argv)));
   }
   const std::string engine = enginePath(argv[0]);
   execv(engine.c_str(), argv);

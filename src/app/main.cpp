@@ -205,9 +205,10 @@ int main(int argc, char** argv) {
     return code == 0 ? cc::kExitOk : cc::kExitUsage;
   }
 
-  // Under mpirun the processes share the cores: one thread each unless --threads says more.
-  if (*runCommand && run.threads == 0 && cc::launchedProcesses() > 1) run.threads = 1;
-  if (*runCommand) applyOpenMpEnvironment(argv, run.threads);
+  if (*runCommand) {
+    run.threads = cc::app::runThreads(run.threads);
+    applyOpenMpEnvironment(argv, run.threads);
+  }
   reuseFreedMemory();
   try {
     // PETSc (and MPI) are started by the first PETSc solver only; finalized once here.

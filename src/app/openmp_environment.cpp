@@ -4,7 +4,14 @@
 #include <cstdlib>
 #include <string>
 
+#include "parallel/launch_environment.hpp"
+
 namespace cc::app {
+
+int runThreads(int requested) {
+  // The processes share the cores.
+  return requested == 0 && launchedProcesses() > 1 ? 1 : requested;
+}
 
 bool setOpenMpEnvironment(int threads) {
   bool changed = false;

@@ -5,6 +5,10 @@
 
 namespace cc::app {
 
+// Threads of a run given `--threads` (0: not given): under mpirun or srun one per process unless
+// --threads says more, else as given (0: all cores).
+int runThreads(int requested);
+
 // Sets, unless the user set them:
 //  - OMP_WAIT_POLICY=passive: idle OpenMP threads sleep instead of spinning ~300 000 times
 //    after each parallel region; on a machine whose other core is busy that spinning took a

@@ -69,6 +69,9 @@ struct PointLayout {
     return previousMasterCount == 0 ? &masterNormals : &previousMasterNormals;
   }
 };
+// kMaxItemNodes is what PointLayout can hold: slave, master and previous master nodes.
+static_assert(kMaxItemNodes == 3 * std::tuple_size_v<decltype(PointLayout::slaveLocal)> &&
+              kMaxItemNodes == 3 * std::tuple_size_v<decltype(PointLayout::masterLocal)>);
 
 // History of a contact point, committed only when a step converges (DESIGN.md).
 struct PointHistory {

@@ -6,7 +6,6 @@
 
 #include <Eigen/Core>
 #include <optional>
-#include <stdexcept>
 #include <type_traits>
 #include <unsupported/Eigen/AutoDiff>
 
@@ -44,9 +43,6 @@ void exactTangent(const NodeMatrix<double>& nodes, const PointLayout& layout,
                   const PointHistory& history, const LawParameters& law, KinematicsFn&& kinematics,
                   Eigen::MatrixXd& K) {
   const int dofs = 3 * layout.nodeCount;
-  if (layout.nodeCount > kMaxItemNodes) {
-    throw std::logic_error("exactTangent: a contact item with more than 27 nodes");
-  }
   K.setZero(dofs, dofs);
   NodeMatrix<AutoDiff> active(3, layout.nodeCount);
   for (int node = 0; node < layout.nodeCount; ++node) {

@@ -8,12 +8,11 @@ namespace cc::contact {
 namespace {
 
 using Eigen::MatrixXd;
-using VectorXd = ItemVector;  // on the stack (contact_point.hpp)
 
 // A^T u: slave blocks N_s u, master blocks -N_m u (A maps dofs to delta r_s - delta rho).
-VectorXd positionTranspose(const PointKinematics<double>& kin, const PointLayout& layout,
-                           const Eigen::Vector3d& u) {
-  VectorXd v = VectorXd::Zero(3 * layout.nodeCount);
+ItemVector positionTranspose(const PointKinematics<double>& kin, const PointLayout& layout,
+                             const Eigen::Vector3d& u) {
+  ItemVector v = ItemVector::Zero(3 * layout.nodeCount);
   for (int a = 0; a < layout.slaveCount; ++a) {
     v.segment<3>(3 * layout.slaveLocal[a]) += layout.slaveShape[a] * u;
   }
@@ -29,9 +28,9 @@ VectorXd positionTranspose(const PointKinematics<double>& kin, const PointLayout
 
 // A_j^T u: master blocks N_m,j u (A_j maps dofs to delta rho_,j); on a smoothed master
 // M_k,j^T u with the blend derivatives f_e,j.
-VectorXd derivativeTranspose(const shape::SurfaceShape<double>& shape, const PointLayout& layout,
-                             const NagataBlend<double>& blend, int j, const Eigen::Vector3d& u) {
-  VectorXd v = VectorXd::Zero(3 * layout.nodeCount);
+ItemVector derivativeTranspose(const shape::SurfaceShape<double>& shape, const PointLayout& layout,
+                               const NagataBlend<double>& blend, int j, const Eigen::Vector3d& u) {
+  ItemVector v = ItemVector::Zero(3 * layout.nodeCount);
   std::array<double, 4> weights{};
   for (int e = 0; e < 4; ++e) weights[e] = blend.first[e][j];
   for (int b = 0; b < layout.masterCount; ++b) {
@@ -49,7 +48,7 @@ constexpr double kFlatTolerance = 1e-12;
 
 // K += scale (a b^T + b a^T), entry by entry: Eigen's expression built the sum in a heap
 // temporary of K's size at every call.
-void addSymmetricPair(MatrixXd& K, double scale, const VectorXd& a, const VectorXd& b) {
+void addSymmetricPair(MatrixXd& K, double scale, const ItemVector& a, const ItemVector& b) {
   for (Eigen::Index col = 0; col < K.cols(); ++col) {
     for (Eigen::Index row = 0; row < K.rows(); ++row) {
       K(row, col) += scale * (a[row] * b[col] + b[row] * a[col]);
@@ -124,7 +123,7 @@ void stickMain(const TangentContext& c, double penaltyTangential, MatrixXd& K) {
 void tractionRotational(const TangentContext& c, const Eigen::Vector2d& traction, MatrixXd& K) {
   const Eigen::Vector2d tractionContra = c.frame->inverseMetric * traction;  // T^l = a^il T_i
   for (int j = 0; j < 2; ++j) {
-    const VectorXd AjT = tractionContra[0] * c.Ajrho[j][0] + tractionContra[1] * c.Ajrho[j][1];
+    const ItemVector AjT = tractionContra[0] * c.Ajrho[j][0] + tractionContra[1] * c.Ajrho[j][1];
     if (c.fixedMasterPoint) {
       // STAS (xi fixed): only T_i delta rho^i, with delta rho^i = -(rho^i . delta rho_,k) rho^k
       // + a^ij (n . delta rho_,j) n.
@@ -148,7 +147,7 @@ void tractionCurvature(const TangentContext& c, const Eigen::Vector2d& traction,
 void slideConstitutive(const TangentContext& c, const LawParameters& law, double normal,
                        const TangentialTraction<double>& tangential, MatrixXd& K) {
   const Eigen::Vector2d direction = tangential.trialCovariant / tangential.trialNorm;
-  const VectorXd Ae = direction[0] * c.ArhoContra[0] + direction[1] * c.ArhoContra[1];
+  const ItemVector Ae = direction[0] * c.ArhoContra[0] + direction[1] * c.ArhoContra[1];
   K.noalias() += (c.weight * law.friction * law.penaltyNormal) * Ae * c.Agap.transpose();
   const double scale =
       c.weight * law.penaltyTangential * law.friction * std::abs(normal) / tangential.trialNorm;
@@ -174,9 +173,9 @@ void slideUnsymmetricCurvature(const TangentContext& c, const LawParameters& law
       curvatureWeight += directionContra[j] * trial[m] * f.curvatureMixed(j, m);
     }
   }
-  const VectorXd Ae = direction[0] * c.ArhoContra[0] + direction[1] * c.ArhoContra[1];
-  const VectorXd right = -christoffelWeights[0] * c.ArhoContra[0] -
-                         christoffelWeights[1] * c.ArhoContra[1] + curvatureWeight * c.An;
+  const ItemVector Ae = direction[0] * c.ArhoContra[0] + direction[1] * c.ArhoContra[1];
+  const ItemVector right = -christoffelWeights[0] * c.ArhoContra[0] -
+                           christoffelWeights[1] * c.ArhoContra[1] + curvatureWeight * c.An;
   const double scale = c.weight * law.friction * std::abs(normal) / tangential.trialNorm;
   K.noalias() -= scale * Ae * right.transpose();
 }

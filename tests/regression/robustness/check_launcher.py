@@ -8,6 +8,7 @@ environment and executes covcontact-engine in its own place, so that the program
   --case missing_program: the launcher alone, without the engine beside it, says which file it
       could not start and exits 70 (an incomplete installation is an internal error).
 """
+import argparse
 import os
 import shutil
 import subprocess
@@ -94,12 +95,16 @@ def missing_program_case(args):
 
 
 def main():
-    case = sys.argv.pop(sys.argv.index("--case") + 1)
-    sys.argv.remove("--case")
-    args = stress_script.parse_args()
+    cases = {"environment": environment_case, "missing_program": missing_program_case}
+    parser = argparse.ArgumentParser(description=__doc__)
+    parser.add_argument("--covcontact", required=True)
+    parser.add_argument("--decks", required=True, help="input/stress")
+    parser.add_argument("--scratch", required=True, help="working directory (emptied first)")
+    parser.add_argument("--case", required=True, choices=sorted(cases))
+    args = parser.parse_args()
     shutil.rmtree(args.scratch, ignore_errors=True)
     os.makedirs(args.scratch)
-    {"environment": environment_case, "missing_program": missing_program_case}[case](args)
+    cases[args.case](args)
 
 
 if __name__ == "__main__":
