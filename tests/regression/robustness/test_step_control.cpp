@@ -1,5 +1,6 @@
-// Step control (issue 7): a step that inverts elements is cut back and the run finishes at the
-// right equilibrium; an inversion no step size avoids stops the run with the element named; a
+// Step control (issue 7): a step that inverts elements is retried with the line search (and cut
+// back if that fails too) and the run finishes at the right equilibrium; an inversion no step
+// size avoids stops the run with the element named; a
 // cut-back leaves the contact history exactly as it was (the cut path equals the same sub-steps
 // taken plainly); and every cut-back is logged and counted in the results file.
 #include <gtest/gtest.h>
@@ -15,7 +16,13 @@
 namespace cc::test {
 namespace {
 
-TEST(InvertedElement, OneDeepPunchStepIsCutBackAndEndsAtTheEquilibriumOfSixteenSteps) {
+// A Newton iterate that folds elements is an overshoot of the full Newton step more often than a
+// step too large (issue 14: the faceted NTS ironing die inverted a slab element at every step
+// size below 1e-10 and the run stopped at t = 0.495; with the line search it completes without
+// a cut-back). So the step is first retried with the line search, which backs off from inverted
+// configurations, and cut back only if that fails as well (the cut-backs: the next test).
+TEST(InvertedElement,
+     OneDeepPunchStepIsRetriedWithLineSearchAndEndsAtTheEquilibriumOfSixteenSteps) {
   const DeckRun oneStep = runStressDeck("inverted_element_cutback");
   ASSERT_EQ(oneStep.summary.outcome, RunSummary::Outcome::Completed) << oneStep.summary.message;
   int inversions = 0;
@@ -25,9 +32,12 @@ TEST(InvertedElement, OneDeepPunchStepIsCutBackAndEndsAtTheEquilibriumOfSixteenS
       ++inversions;
     }
   }
-  EXPECT_GE(inversions, 1) << "no cut-back was caused by an inverted element";
-  EXPECT_GE(oneStep.summary.totalCutbacks, inversions);
+  EXPECT_GE(inversions, 1) << "no retry was caused by an inverted element";
+  EXPECT_GE(oneStep.summary.lineSearchRetries, 1);
+  EXPECT_EQ(oneStep.summary.totalCutbacks, 0);
+  EXPECT_EQ(oneStep.summary.stepsConverged, 1);
   std::cout << "punch in one step: " << oneStep.summary.stepsConverged << " steps, "
+            << oneStep.summary.lineSearchRetries << " line-search retries, "
             << oneStep.summary.totalCutbacks << " cut-backs (" << inversions
             << " for inverted elements)\n";
   const std::string deck = readText(stressDeck("inverted_element_cutback"));
