@@ -1,8 +1,8 @@
 // Step control (issue 7): a step that inverts elements is retried with the line search (and cut
 // back if that fails too) and the run finishes at the right equilibrium; an inversion no step
-// size avoids stops the run with the element named; a
-// cut-back leaves the contact history exactly as it was (the cut path equals the same sub-steps
-// taken plainly); and every cut-back is logged and counted in the results file.
+// size avoids stops the run with the element named; a cut-back leaves the contact history
+// exactly as it was (the cut path equals the same sub-steps taken plainly); and every cut-back
+// is logged and counted in the results file.
 #include <gtest/gtest.h>
 
 #include <cmath>
