@@ -314,6 +314,7 @@ void ContactPair::commitStep() {
     point.segmentChangesInStep = 0;
   }
   passAtStepStart_ = evaluationPass_;
+  rememberedSearch_.clear();
   // The previous-segment nodes of the items follow the new history.
   for (PairPoint& point : points_) buildItem(point);
   ++topologyVersion_;
@@ -321,6 +322,7 @@ void ContactPair::commitStep() {
 
 void ContactPair::restoreStep() {
   passAtStepStart_ = evaluationPass_;
+  rememberedSearch_.clear();
   restoreAugmentation();
   for (PairPoint& point : points_) {
     if (searchesMasterSegments(config_.kind)) {
@@ -333,6 +335,31 @@ void ContactPair::restoreStep() {
   }
   tracker_.invalidateGrid();
   ++topologyVersion_;
+}
+
+void ContactPair::rememberSearch() {
+  rememberedSearch_.resize(points_.size());
+  for (std::size_t i = 0; i < points_.size(); ++i) {
+    const PairPoint& point = points_[i];
+    rememberedSearch_[i] = {point.segment, point.xi, point.segmentChangesInStep};
+  }
+}
+
+void ContactPair::recallSearch() {
+  if (rememberedSearch_.size() != points_.size()) return;
+  bool rebuilt = false;
+  for (std::size_t i = 0; i < points_.size(); ++i) {
+    PairPoint& point = points_[i];
+    const SearchPosition& remembered = rememberedSearch_[i];
+    point.xi = remembered.xi;
+    point.segmentChangesInStep = remembered.segmentChangesInStep;
+    if (point.segment != remembered.segment) {
+      point.segment = remembered.segment;
+      buildItem(point);
+      rebuilt = true;
+    }
+  }
+  if (rebuilt) ++topologyVersion_;
 }
 
 ContactPairRecord ContactPair::record() const {

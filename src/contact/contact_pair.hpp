@@ -89,6 +89,10 @@ class ContactPair : public Contribution {
   bool tangentSymmetric() const override;
   void commitStep() override;
   void restoreStep() override;
+  // Each point's master segment, parameter and segment changes in the step: remembered at a
+  // Newton iterate, recalled before a trial evaluation off it (solver/nonlinear_problem.hpp).
+  void rememberSearch();
+  void recallSearch();
 
   // Points whose trial state or master segment changed since the last call, and the points in
   // contact (contact_pair_diagnostics.cpp; Newton logs it per iteration). Only the points
@@ -176,6 +180,12 @@ class ContactPair : public Contribution {
   std::vector<ContactState> countedState_;
   std::vector<int> countedSegment_;
   std::vector<int> moved_;  // scratch of searchSegments
+  struct SearchPosition {
+    int segment;
+    Eigen::Vector2d xi;
+    int segmentChangesInStep;
+  };
+  std::vector<SearchPosition> rememberedSearch_;  // rememberSearch()
   std::uint64_t topologyVersion_ = 1;
   // Counts prepare() calls: points evaluated since the last one carry this number.
   std::uint64_t evaluationPass_ = 0;

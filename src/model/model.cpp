@@ -136,6 +136,14 @@ void Model::restoreStep() {
   for (auto& pair : contactPairs_) pair->restoreStep();
 }
 
+void Model::rememberContactSearch() {
+  for (auto& pair : contactPairs_) pair->rememberSearch();
+}
+
+void Model::recallContactSearch() {
+  for (auto& pair : contactPairs_) pair->recallSearch();
+}
+
 int Model::elementCount() const {
   int count = 0;
   for (const auto& set : elementSets_) count += set->elementCount();

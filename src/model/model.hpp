@@ -40,6 +40,8 @@ class Model : public NonlinearProblem {
   void scalePenalties(double factor) override;
   void commitStep() override;
   void restoreStep() override;
+  void rememberContactSearch() override;
+  void recallContactSearch() override;
   // Connected groups of elements, each named after its element blocks (model_state.cpp).
   std::vector<BodyNodes> bodies() const override;
   ContactChanges takeContactChanges() override;

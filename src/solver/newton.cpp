@@ -181,6 +181,7 @@ double Newton::lineSearch(const NewtonStep& step, const Eigen::VectorXd& du,
     addToFree(trial, du, fraction);
     double residual = std::numeric_limits<double>::infinity();
     try {
+      problem_.recallContactSearch();  // R(u + a du) on the segments K was formed on
       assembleAt(trial, step, false);
       residual = freeResidual().norm();
     } catch (const StepFailure&) {
@@ -195,6 +196,7 @@ double Newton::lineSearch(const NewtonStep& step, const Eigen::VectorXd& du,
     Eigen::VectorXd accepted = displacement;
     addToFree(accepted, du, bestFraction);
     try {
+      problem_.recallContactSearch();
       assembleAt(accepted, step, false);
     } catch (const StepFailure&) {
       // the next iteration's assembly reports it
@@ -225,9 +227,11 @@ void Newton::checkTangent(const NewtonStep& step, const Eigen::VectorXd& du,
       Eigen::VectorXd plus = displacement, minus = displacement;
       addToFree(plus, v, h);
       addToFree(minus, v, -h);
+      problem_.recallContactSearch();
       assembleAt(plus, step, false);
       (void)problem_.takeContactChanges();
       const Eigen::VectorXd rPlus = freeResidual();
+      problem_.recallContactSearch();
       assembleAt(minus, step, false);
       const ContactChanges changed = problem_.takeContactChanges();
       const Eigen::VectorXd fd = (rPlus - freeResidual()) / (2 * h);
@@ -238,6 +242,7 @@ void Newton::checkTangent(const NewtonStep& step, const Eigen::VectorXd& du,
                  changed.state, changed.segment);
     }
   }
+  problem_.recallContactSearch();
   assembleAt(displacement, step, false);  // the trial state of the iterate again
   (void)problem_.takeContactChanges();
 }
@@ -285,6 +290,7 @@ NewtonResult Newton::solve(const NewtonStep& step, const NewtonSpec& spec,
     try {
       assembleAt(displacement, step, true);
       extrapolatedStart_ = false;  // the first iterate's assembly is the only one at the start
+      problem_.rememberContactSearch();  // where the line search's trials start their search
       changes = problem_.takeContactChanges();
       rhs = -freeResidual();
       if (iteration == 1 && dofs.numPrescribed() > 0) {

@@ -53,6 +53,15 @@ class NonlinearProblem {
   virtual void scalePenalties(double /*factor*/) {}
   virtual void commitStep() = 0;   // the step converged: keep its history
   virtual void restoreStep() = 0;  // the step is cut back: forget the attempt
+  // The contact search state (each point's master segment and parameter): remembered at an
+  // iterate whose tangent Newton solves with, recalled before every trial evaluation off that
+  // iterate (line search, tangent check). The search walks from where it last stood and keeps
+  // a point above a ridge of a faceted master on the segment it came from, so without this
+  // the residual along a Newton direction depends on which trial was evaluated last: at a
+  // ridge two segments with different normals, one linearized, the other evaluated (issue 14,
+  // docs/verification/sliding.md).
+  virtual void rememberContactSearch() {}
+  virtual void recallContactSearch() {}
   // The bodies, for naming the rigid-body motions a singular tangent leaves free
   // (solver/rigid_body_modes.hpp). Empty: all nodes form one body.
   virtual std::vector<BodyNodes> bodies() const { return {}; }

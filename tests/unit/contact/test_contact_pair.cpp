@@ -310,5 +310,46 @@ TEST(ContactPair, RigidSurfaceIsExactAtAnExtrapolatedFirstIterate) {
   EXPECT_NEAR(deeperAgain, 2 * still, 1e-9 * pushing);
 }
 
+// A roof of two flat master faces meeting at a ridge x = 1 (z = 0.2 x, then 0.2 (2 - x)); below
+// the ridge a slave node projects inside both faces, and the search keeps it on the one it
+// came from. Newton's line search recalls the search state of its iterate before each trial
+// (nonlinear_problem.hpp): a trial that moved the node to the other face must not decide the
+// face of the next trial near the iterate, else the residual along the Newton direction jumps
+// by the change of the normal (issue 14, the faceted ironing die with mu = 0.6).
+TEST(ContactPair, RecalledSearchEvaluatesTheIterateOnItsOwnFaceAgain) {
+  Mesh mesh;
+  mesh.coordinates.resize(3, 10);
+  for (int j = 0; j < 2; ++j) {
+    for (int i = 0; i < 3; ++i) mesh.coordinates.col(3 * j + i) = Vector3d(i, j, i == 1 ? 0.2 : 0);
+  }
+  FaceSet master;
+  master.type = CellType::Quad4;
+  master.connectivity.resize(2, 4);
+  master.connectivity << 0, 1, 4, 3, 1, 2, 5, 4;
+  // One slave face; only node 6 lies over the master, its other nodes far beside it (open).
+  const Vector3d iterate(0.99, 0.5, 0.12);
+  mesh.coordinates.col(6) = iterate;
+  mesh.coordinates.col(7) = Vector3d(5, 0.5, 0.12);
+  mesh.coordinates.col(8) = Vector3d(5, 1.5, 0.12);
+  mesh.coordinates.col(9) = Vector3d(0.99, 1.5, 5);
+  FaceSet slave;
+  slave.type = CellType::Quad4;
+  slave.connectivity.resize(1, 4);
+  slave.connectivity << 6, 9, 8, 7;
+  auto pair = ContactPair::nodeToSegment(config(PointKind::NodeToSegment), mesh, master, slave);
+  Matrix3Xd x = mesh.coordinates;
+  const Eigen::VectorXd atIterate = assembleForce(*pair, x, mesh.coordinates, 1);
+  ASSERT_GT(atIterate.norm(), 0);  // node 6 penetrates
+  pair->rememberSearch();
+  x.col(6) = Vector3d(1.2, 0.5, 0.12);  // a long trial: the node is under the other face only
+  (void)assembleForce(*pair, x, mesh.coordinates, 1);
+  x.col(6) = iterate;
+  const Eigen::VectorXd fromOtherFace = assembleForce(*pair, x, mesh.coordinates, 1);
+  EXPECT_GT((fromOtherFace - atIterate).norm(), 0.05 * atIterate.norm());  // the hysteresis
+  pair->recallSearch();
+  const Eigen::VectorXd recalled = assembleForce(*pair, x, mesh.coordinates, 1);
+  EXPECT_EQ((recalled - atIterate).norm(), 0.0);
+}
+
 }  // namespace
 }  // namespace cc::contact
