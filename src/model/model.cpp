@@ -1,6 +1,8 @@
 // Model: the NonlinearProblem the solver works on, and the step records for output.
 #include "model/model.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 
 namespace cc {
@@ -134,6 +136,12 @@ ContactChanges Model::takeContactChanges() {
 void Model::restoreStep() {
   for (auto& set : elementSets_) set->restoreStep();
   for (auto& pair : contactPairs_) pair->restoreStep();
+}
+
+std::string Model::nodeLabel(int node) const {
+  const std::size_t index = static_cast<std::size_t>(node);
+  return index < mesh_.gmshNodeTags.size() ? fmt::format("gmsh node {}", mesh_.gmshNodeTags[index])
+                                           : fmt::format("node {}", node);
 }
 
 void Model::rememberContactSearch() {

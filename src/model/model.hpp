@@ -44,6 +44,7 @@ class Model : public NonlinearProblem {
   void recallContactSearch() override;
   // Connected groups of elements, each named after its element blocks (model_state.cpp).
   std::vector<BodyNodes> bodies() const override;
+  std::string nodeLabel(int node) const override;
   ContactChanges takeContactChanges() override;
   void sumOverProcesses(Eigen::VectorXd& values) override;
   std::vector<int> nodeOwners() const override { return nodeOwner_; }

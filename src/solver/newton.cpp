@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <limits>
+#include <numeric>
 
 #include "common/stopwatch.hpp"
 #include "solver/rigid_body_modes.hpp"
@@ -209,7 +210,10 @@ double Newton::lineSearch(const NewtonStep& step, const Eigen::VectorXd& du,
 // (R(u + h v) - R(u - h v)) / 2h, along the Newton direction and two fixed pseudo-random
 // directions, for three step sizes (printed to stderr). An inconsistent tangent shows an error
 // independent of h; a non-smooth residual (contact points changing state or segment between
-// u - h v and u + h v, counted) an error that does not fall with h.
+// u - h v and u + h v, counted) an error that does not fall with h. Each line is followed by
+// the equations with the largest |K v - fd|: where to look (on the faceted ironing die they
+// showed the tangent and the differences on two neighbouring master segments, issue 14).
+constexpr int kTangentCheckWorstEquations = 3;
 void Newton::checkTangent(const NewtonStep& step, const Eigen::VectorXd& du,
                           const Eigen::VectorXd& displacement) {
   const Eigen::Index n = du.size();
@@ -240,11 +244,29 @@ void Newton::checkTangent(const NewtonStep& step, const Eigen::VectorXd& du,
                  "|fd| = {:.3e} (contact points changing state {} / segment {} between u -+ h v)\n",
                  step.step, tangentCheck_.iteration, name, relative, (Kv - fd).norm() / fd.norm(),
                  changed.state, changed.segment);
+      printWorstEquations(Kv, fd);
     }
   }
   problem_.recallContactSearch();
   assembleAt(displacement, step, false);  // the trial state of the iterate again
   (void)problem_.takeContactChanges();
+}
+
+void Newton::printWorstEquations(const Eigen::VectorXd& Kv, const Eigen::VectorXd& fd) const {
+  const std::vector<int>& freeDofs = problem_.dofMap().freeDofs();
+  std::vector<Eigen::Index> order(static_cast<std::size_t>(Kv.size()));
+  std::iota(order.begin(), order.end(), Eigen::Index{0});
+  const std::size_t shown = std::min<std::size_t>(kTangentCheckWorstEquations, order.size());
+  std::partial_sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(shown), order.end(),
+                    [&](Eigen::Index a, Eigen::Index b) {
+                      return std::abs(Kv[a] - fd[a]) > std::abs(Kv[b] - fd[b]);
+                    });
+  for (std::size_t k = 0; k < shown; ++k) {
+    const Eigen::Index e = order[k];
+    const int dof = freeDofs[static_cast<std::size_t>(e)];
+    fmt::print(stderr, "  {} {}: K v - fd = {:.3e} (K v = {:.6e}, fd = {:.6e})\n",
+               problem_.nodeLabel(dof / 3), "xyz"[dof % 3], Kv[e] - fd[e], Kv[e], fd[e]);
+  }
 }
 
 NewtonResult Newton::solve(const NewtonStep& step, const NewtonSpec& spec,

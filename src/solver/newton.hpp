@@ -149,6 +149,7 @@ class Newton {
   void addToFree(Eigen::VectorXd& displacement, const Eigen::VectorXd& du, double scale) const;
   void checkTangent(const NewtonStep& step, const Eigen::VectorXd& du,
                     const Eigen::VectorXd& displacement);
+  void printWorstEquations(const Eigen::VectorXd& Kv, const Eigen::VectorXd& fd) const;
 
   NonlinearProblem& problem_;
   StepObserver& observer_;

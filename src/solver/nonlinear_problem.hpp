@@ -65,6 +65,8 @@ class NonlinearProblem {
   // The bodies, for naming the rigid-body motions a singular tangent leaves free
   // (solver/rigid_body_modes.hpp). Empty: all nodes form one body.
   virtual std::vector<BodyNodes> bodies() const { return {}; }
+  // How messages name a node (the mesh file's own number where there is one).
+  virtual std::string nodeLabel(int node) const { return "node " + std::to_string(node); }
   // Contact points that changed state or master segment since the last call (diagnostics).
   virtual ContactChanges takeContactChanges() { return {}; }
 

@@ -3,7 +3,8 @@
 one log line per Newton iteration with the contact counts, the iterations of each step add up to
 the step's count, the tangent check prints 3 directions x 3 step sizes, and with the exact tangent
 the random-direction check agrees with the central differences of the residual to 1e-6 at
-h = 1e-6 |u| (an independent reference: the residual itself); a malformed STEP:ITERATION is
+h = 1e-6 |u| (an independent reference: the residual itself), each check names its three worst
+equations, largest first; a malformed STEP:ITERATION is
 rejected with a usage error."""
 import os
 import re
@@ -46,6 +47,16 @@ if len(checks) != 9:
 for direction, h, error in checks:
     if direction.startswith("random") and float(h) == 1e-6 and not float(error) < 1e-6:
         failures.append(f"exact tangent vs differences along {direction}: {error}")
+# Each check line is followed by its three equations with the largest |K v - fd|, largest first,
+# named by the mesh file's node number and the component.
+blocks = re.findall(r"tangent check: [^\n]*\n((?:  gmsh node \d+ [xyz]: K v - fd = \S+ \(K v = \S+, "
+                    r"fd = \S+\)\n){3})", run.stderr)
+if len(blocks) != 9:
+    failures.append(f"{len(blocks)} checks with three worst equations listed, expected 9")
+for block in blocks:
+    gaps = [abs(float(g)) for g in re.findall(r"K v - fd = (\S+)", block)]
+    if gaps != sorted(gaps, reverse=True):
+        failures.append(f"worst equations not in descending order:\n{block}")
 bad = subprocess.run([args.covcontact, "run", "--check-tangent", "2", deck],
                      capture_output=True, text=True, timeout=60)
 if bad.returncode == 0 or "STEP:ITERATION" not in bad.stderr:
