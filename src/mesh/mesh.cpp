@@ -1,5 +1,8 @@
-// Small helpers of the Mesh data types: node counts and names of cell types, block lookup.
+// Small helpers of the Mesh data types: node counts and names of cell types, block lookup,
+// node names for messages.
 #include "mesh/mesh.hpp"
+
+#include <fmt/format.h>
 
 namespace cc {
 
@@ -40,6 +43,12 @@ const ElementBlock* Mesh::findBlock(const std::string& name) const {
     if (block.name == name) return &block;
   }
   return nullptr;
+}
+
+std::string Mesh::nodeName(int node) const {
+  const std::size_t index = static_cast<std::size_t>(node);
+  return index < gmshNodeTags.size() ? fmt::format("gmsh node {}", gmshNodeTags[index])
+                                     : fmt::format("node {}", node);
 }
 
 }  // namespace cc

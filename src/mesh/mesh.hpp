@@ -57,6 +57,8 @@ struct Mesh {
 
   int numNodes() const { return static_cast<int>(coordinates.cols()); }
   const ElementBlock* findBlock(const std::string& name) const;
+  // How messages name a node: "gmsh node N" with the mesh file's tag, else "node N" (0-based).
+  std::string nodeName(int node) const;
 };
 
 }  // namespace cc

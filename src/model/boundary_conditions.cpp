@@ -137,9 +137,7 @@ void BoundaryConditions::checkOverlaps(const ProblemSpec& spec, const Mesh& mesh
     const std::vector<double>& times = position ? positionTimes : timeOnlyTimes;
     const int node = overlap.dof / 3;
     const Eigen::Vector3d x = mesh.coordinates.col(node);
-    overlap.nodeName = static_cast<std::size_t>(node) < mesh.gmshNodeTags.size()
-                           ? fmt::format("gmsh node {}", mesh.gmshNodeTags[node])
-                           : fmt::format("node {}", node);
+    overlap.nodeName = mesh.nodeName(node);
     first.resize(times.size());
     second.resize(times.size());
     double scale = 0;

@@ -1,8 +1,6 @@
 // Model: the NonlinearProblem the solver works on, and the step records for output.
 #include "model/model.hpp"
 
-#include <fmt/format.h>
-
 #include <algorithm>
 
 namespace cc {
@@ -139,9 +137,7 @@ void Model::restoreStep() {
 }
 
 std::string Model::nodeLabel(int node) const {
-  const std::size_t index = static_cast<std::size_t>(node);
-  return index < mesh_.gmshNodeTags.size() ? fmt::format("gmsh node {}", mesh_.gmshNodeTags[index])
-                                           : fmt::format("node {}", node);
+  return mesh_.nodeName(node);
 }
 
 void Model::rememberContactSearch() {
