@@ -14,6 +14,7 @@
 
 #include "app/commands.hpp"
 #include "app/openmp_environment.hpp"
+#include "app/stop_signals.hpp"
 #include "common/errors.hpp"
 #include "deck/spec_choices.hpp"
 #include "parallel/process_group.hpp"
@@ -88,6 +89,7 @@ int main(int argc, char** argv) {
   // A closed pipe on stdout (`covcontact run DECK | head -1`) must not kill the run: writes then
   // fail with EPIPE, which printOut reports once, and the run goes on to finish its results.
   std::signal(SIGPIPE, SIG_IGN);
+  cc::app::watchStopSignals();
   CLI::App cli{
       "CovContact: 3D frictional contact at large deformations (covariant description, "
       "Konyukhov & Schweizerhof 2005)"};

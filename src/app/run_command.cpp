@@ -11,9 +11,7 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
-#include <csignal>
 #include <filesystem>
 #include <iostream>
 #include <new>
@@ -23,6 +21,7 @@
 #include "app/commands.hpp"
 #include "app/progress.hpp"
 #include "app/restart.hpp"
+#include "app/stop_signals.hpp"
 #include "common/errors.hpp"
 #include "deck/deck_parser.hpp"
 #include "deck/spec_choices.hpp"
@@ -38,18 +37,6 @@
 namespace cc::app {
 
 namespace {
-
-std::atomic<bool> stopSignal{false};
-
-// The first SIGINT/SIGTERM stops after the current iteration (which may be a long solve); a
-// second one stops at once, like a kill: every step already written stays readable.
-extern "C" void requestStop(int) {
-  if (!stopSignal.exchange(true)) return;
-  static const char kMessage[] =
-      "\ncovcontact: second interrupt: stopping at once; the steps written so far are kept\n";
-  [[maybe_unused]] const auto written = ::write(STDERR_FILENO, kMessage, sizeof kMessage - 1);
-  ::_exit(kExitInterrupted);
-}
 
 // What did not fit when memory ran out, with the model's size, the size asked for, the memory
 // the process had reached and its limit (std::bad_alloc itself says none of these).
@@ -122,7 +109,7 @@ class RunObserver : public StepObserver {
   }
   // Several processes: a signal may reach them at different iterations; all stop at the first
   // poll after any one of them got it.
-  bool stopRequested() const override { return group_.maximum(stopSignal.load() ? 1 : 0) != 0; }
+  bool stopRequested() const override { return group_.maximum(app::stopRequested() ? 1 : 0) != 0; }
   int writtenSteps() const { return writtenSteps_; }
 
  private:
@@ -438,9 +425,7 @@ int runCommand(const RunOptions& options) {
   Progress progress(endTime(spec), quiet, options.newtonLog && writes);
   RunObserver observer(*model, writer, writes, progress, selection.stress, group,
                        writes ? references.get() : nullptr);
-  stopSignal.store(false);
-  std::signal(SIGINT, requestStop);
-  std::signal(SIGTERM, requestStop);
+  stopAfterIteration();
   // Each dump goes to <dir>/<results stem>_tangent_STEP_ITER, <dir> = --dump-dir or the
   // results file's directory.
   std::vector<TangentDumpRequest> dumps;
