@@ -315,6 +315,7 @@ void ContactPair::commitStep() {
   }
   passAtStepStart_ = evaluationPass_;
   rememberedSearch_.clear();
+  forgetChangesInAttempt();
   // The previous-segment nodes of the items follow the new history.
   for (PairPoint& point : points_) buildItem(point);
   ++topologyVersion_;
@@ -323,6 +324,7 @@ void ContactPair::commitStep() {
 void ContactPair::restoreStep() {
   passAtStepStart_ = evaluationPass_;
   rememberedSearch_.clear();
+  forgetChangesInAttempt();
   restoreAugmentation();
   for (PairPoint& point : points_) {
     if (searchesMasterSegments(config_.kind)) {

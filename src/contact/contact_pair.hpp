@@ -98,6 +98,15 @@ class ContactPair : public Contribution {
   // contact (contact_pair_diagnostics.cpp; Newton logs it per iteration). Only the points
   // evaluated since the last prepare() count (all of them in a serial run).
   ContactChanges takeChanges();
+  // How often each point changed its state (open/stick/slip) and, in contact, its master
+  // segment in the calls of takeChanges() since the last commit or restore: the points a
+  // stalled Newton solve keeps switching (issue 14), which its failure message names. Only the
+  // points this process evaluates count; empty before the first call.
+  const std::vector<int>& stateChangesInAttempt() const { return stateChangesInAttempt_; }
+  const std::vector<int>& segmentChangesInAttempt() const { return segmentChangesInAttempt_; }
+  // The mesh node a message names point `item` by: the slave node with the largest shape value
+  // at it (NTS: its own node), for STAS the first node of its slab face.
+  int nearestNode(std::size_t item) const;
 
   // Output of the last evaluated (after commit: converged) state.
   ContactPairRecord record() const;
@@ -141,6 +150,7 @@ class ContactPair : public Contribution {
   ContactPair(ContactPairConfig config, const FaceSet& master, std::vector<PairPoint> points);
   const MasterSurface& master() const { return tracker_.master(); }
   void buildItem(PairPoint& point) const;
+  void forgetChangesInAttempt();                          // contact_pair_diagnostics.cpp
   void importAugmentation(const Eigen::MatrixXd& table);  // contact_pair_history.cpp
   // The search tracking of NTS/STS points; rebuilds the items of the points that moved.
   LocalStatus searchSegments(const Eigen::Matrix3Xd& x, double time);
@@ -179,6 +189,7 @@ class ContactPair : public Contribution {
   // What takeChanges() saw last, per point.
   std::vector<ContactState> countedState_;
   std::vector<int> countedSegment_;
+  std::vector<int> stateChangesInAttempt_, segmentChangesInAttempt_;
   std::vector<int> moved_;  // scratch of searchSegments
   struct SearchPosition {
     int segment;

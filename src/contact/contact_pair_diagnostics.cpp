@@ -2,7 +2,10 @@
 // segment between two Newton iterations, and how many are in contact. A residual whose active
 // set keeps changing is not smooth, and Newton cannot converge quadratically through it
 // (issue 14; `covcontact run --newton-log` prints it per iteration). The signature of the active
-// set lets Newton see the set return to an earlier iteration's (a cycle).
+// set lets Newton see the set return to an earlier iteration's (a cycle). Per point, the changes
+// since the last commit or restore name the points that keep a failed solve switching.
+#include <algorithm>
+
 #include "contact/contact_pair.hpp"
 
 namespace cc::contact {
@@ -10,6 +13,8 @@ namespace cc::contact {
 ContactChanges ContactPair::takeChanges() {
   countedState_.resize(points_.size(), ContactState::Open);
   countedSegment_.resize(points_.size(), -1);
+  stateChangesInAttempt_.resize(points_.size(), 0);
+  segmentChangesInAttempt_.resize(points_.size(), 0);
   ContactChanges changes;
   changes.signature = 0xcbf29ce484222325ULL;
   for (std::size_t i = 0; i < points_.size(); ++i) {
@@ -17,10 +22,14 @@ ContactChanges ContactPair::takeChanges() {
     if (!evaluatedThisPass(point)) continue;  // another process evaluates it
     const ContactState state = point.trial.valid ? point.trial.state : ContactState::Open;
     const int segment = state != ContactState::Open ? point.segment : -1;
-    if (state != countedState_[i]) ++changes.state;
+    if (state != countedState_[i]) {
+      ++changes.state;
+      ++stateChangesInAttempt_[i];
+    }
     // A segment change counts only for a point in contact before and after.
     if (segment >= 0 && countedSegment_[i] >= 0 && segment != countedSegment_[i]) {
       ++changes.segment;
+      ++segmentChangesInAttempt_[i];
     }
     if (state != ContactState::Open) {
       ++changes.active;
@@ -34,6 +43,23 @@ ContactChanges ContactPair::takeChanges() {
     countedSegment_[i] = segment;
   }
   return changes;
+}
+
+void ContactPair::forgetChangesInAttempt() {
+  std::fill(stateChangesInAttempt_.begin(), stateChangesInAttempt_.end(), 0);
+  std::fill(segmentChangesInAttempt_.begin(), segmentChangesInAttempt_.end(), 0);
+}
+
+int ContactPair::nearestNode(std::size_t item) const {
+  const PairPoint& point = points_[item];
+  if (point.slaveCount == 0) {
+    return point.layout.masterCount > 0
+               ? point.nodes[static_cast<std::size_t>(point.layout.masterLocal[0])]
+               : -1;
+  }
+  const auto shape = point.slaveShape.begin();
+  const auto largest = std::max_element(shape, shape + point.slaveCount);
+  return point.slaveNodes[static_cast<std::size_t>(largest - shape)];
 }
 
 }  // namespace cc::contact

@@ -1,7 +1,11 @@
 // Model: the NonlinearProblem the solver works on, and the step records for output.
 #include "model/model.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
+#include <string>
+#include <vector>
 
 namespace cc {
 
@@ -134,6 +138,51 @@ ContactChanges Model::takeContactChanges() {
 void Model::restoreStep() {
   for (auto& set : elementSets_) set->restoreStep();
   for (auto& pair : contactPairs_) pair->restoreStep();
+}
+
+// The points that changed most often since the step's last commit or restore, at least
+// kSwitchingAtLeast times each: a stalled solve's few switching points (issue 14: two points
+// switching stick/slip at every step length of the line search), not the many that change once
+// as the contact zone moves. Counts are summed over the processes, which evaluate disjoint
+// points.
+std::string Model::describeSwitchingContact() {
+  constexpr int kSwitchingAtLeast = 3;
+  constexpr std::size_t kNamed = 3;
+  struct Switching {
+    int changes, state, segment;
+    std::string where;
+  };
+  std::vector<Switching> found;
+  for (const auto& pair : contactPairs_) {
+    const std::vector<int>& state = pair->stateChangesInAttempt();
+    const std::vector<int>& segment = pair->segmentChangesInAttempt();
+    std::vector<double> counts(2 * static_cast<std::size_t>(pair->pointCount()), 0.0);
+    for (std::size_t i = 0; i < state.size() && i < segment.size(); ++i) {
+      counts[2 * i] = state[i];
+      counts[2 * i + 1] = segment[i];
+    }
+    if (group_) group_->sum(counts.data(), counts.size());
+    for (std::size_t i = 0; 2 * i < counts.size(); ++i) {
+      const int stateChanges = static_cast<int>(counts[2 * i]);
+      const int segmentChanges = static_cast<int>(counts[2 * i + 1]);
+      if (stateChanges + segmentChanges < kSwitchingAtLeast) continue;
+      const int node = pair->nearestNode(i);
+      found.push_back({stateChanges + segmentChanges, stateChanges, segmentChanges,
+                       fmt::format("{} point {}{}", pair->name(), i,
+                                   node >= 0 ? " at " + nodeLabel(node) : std::string())});
+    }
+  }
+  if (found.empty()) return {};
+  std::stable_sort(found.begin(), found.end(),
+                   [](const Switching& a, const Switching& b) { return a.changes > b.changes; });
+  std::string text = fmt::format("{} contact point{} kept changing in this attempt: ", found.size(),
+                                 found.size() == 1 ? "" : "s");
+  for (std::size_t k = 0; k < found.size() && k < kNamed; ++k) {
+    text += fmt::format("{}{} ({} state and {} segment changes)", k > 0 ? ", " : "", found[k].where,
+                        found[k].state, found[k].segment);
+  }
+  if (found.size() > kNamed) text += ", ...";
+  return text;
 }
 
 std::string Model::nodeLabel(int node) const {

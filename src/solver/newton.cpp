@@ -454,10 +454,12 @@ NewtonResult Newton::solve(const NewtonStep& step, const NewtonSpec& spec,
       return {NewtonResult::Status::Interrupted, iteration, FailureKind::Diverged, "interrupted"};
     }
   }
+  const std::string switching = problem_.describeSwitchingContact();
   return failed(spec.maxIterations, FailureKind::Diverged,
                 fmt::format("no convergence in {} iterations (relative residual {:.3g}, relative "
-                            "energy {:.3g})",
-                            spec.maxIterations, norms.relativeResidual(), norms.relativeEnergy()));
+                            "energy {:.3g}){}",
+                            spec.maxIterations, norms.relativeResidual(), norms.relativeEnergy(),
+                            switching.empty() ? "" : "; " + switching));
 }
 
 }  // namespace cc

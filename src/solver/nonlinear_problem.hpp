@@ -69,6 +69,10 @@ class NonlinearProblem {
   virtual std::string nodeLabel(int node) const { return "node " + std::to_string(node); }
   // Contact points that changed state or master segment since the last call (diagnostics).
   virtual ContactChanges takeContactChanges() { return {}; }
+  // The contact points that changed state or master segment most often in this attempt of the
+  // step, by name and count, for the message of a solve that failed (empty: none kept
+  // changing). Collective on several processes, like every failure decision of Newton.
+  virtual std::string describeSwitchingContact() { return {}; }
 
   // A run on several processes (`mpirun`): assemble() returns the whole internal force on
   // every process but each process's tangent holds only the items it owns (the tangent is

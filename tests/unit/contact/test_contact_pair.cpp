@@ -4,7 +4,9 @@
 // naive convective update, eq. (75)).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "contact/contact_pair.hpp"
 
@@ -349,6 +351,47 @@ TEST(ContactPair, RecalledSearchEvaluatesTheIterateOnItsOwnFaceAgain) {
   pair->recallSearch();
   const Eigen::VectorXd recalled = assembleForce(*pair, x, mesh.coordinates, 1);
   EXPECT_EQ((recalled - atIterate).norm(), 0.0);
+}
+
+// A failed Newton solve names the points that kept switching (issue 14): the pair counts each
+// point's state changes between the calls of takeChanges() since the last commit or restore, and
+// names a point by its slave node (NTS: its own node; STS: the node of largest shape value).
+TEST(ContactPair, CountsEachPointsStateChangesInTheAttemptAndNamesItsSlaveNode) {
+  for (PointKind kind : {PointKind::NodeToSegment, PointKind::SegmentToSegment}) {
+    TwoSurfaces s = overlappingSquares(1e-3);
+    auto pair = kind == PointKind::NodeToSegment
+                    ? ContactPair::nodeToSegment(config(kind), s.mesh, s.master, s.slave)
+                    : ContactPair::segmentToSegment(config(kind), s.master, s.slave);
+    const Matrix3Xd closed = s.mesh.coordinates;
+    Matrix3Xd open = closed;
+    for (int node = 9; node < 25; ++node) open(2, node) = 0.1;  // lifted off the master
+    const int points = pair->pointCount();
+    int changes = 0;
+    for (const Matrix3Xd* x : std::vector<const Matrix3Xd*>{&closed, &open, &closed}) {
+      (void)assembleForce(*pair, *x, s.mesh.coordinates, 1);
+      EXPECT_EQ(pair->takeChanges().state, points);  // every point opens or closes
+      ++changes;
+      const std::vector<int>& counted = pair->stateChangesInAttempt();
+      ASSERT_EQ(counted.size(), static_cast<std::size_t>(points));
+      EXPECT_TRUE(std::all_of(counted.begin(), counted.end(), [&](int c) { return c == changes; }));
+      EXPECT_TRUE(std::all_of(pair->segmentChangesInAttempt().begin(),
+                              pair->segmentChangesInAttempt().end(), [](int c) { return c == 0; }));
+    }
+    std::vector<int> named;
+    for (int i = 0; i < points; ++i) {
+      const int node = pair->nearestNode(static_cast<std::size_t>(i));
+      EXPECT_GE(node, 9);  // a slave node
+      EXPECT_LT(node, 25);
+      named.push_back(node);
+    }
+    if (kind == PointKind::NodeToSegment) {  // each point names its own node
+      std::sort(named.begin(), named.end());
+      EXPECT_EQ(std::unique(named.begin(), named.end()), named.end());
+    }
+    pair->restoreStep();
+    const std::vector<int>& forgotten = pair->stateChangesInAttempt();
+    EXPECT_TRUE(std::all_of(forgotten.begin(), forgotten.end(), [](int c) { return c == 0; }));
+  }
 }
 
 }  // namespace

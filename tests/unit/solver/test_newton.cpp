@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 
 #include "solver/newton.hpp"
 #include "spring_chain.hpp"
@@ -214,6 +215,31 @@ TEST(Newton, ResidualGrowthBeyondTheDivergenceFactorFails) {
   EXPECT_EQ(result.status, NewtonResult::Status::Failed);
   EXPECT_EQ(result.failure, FailureKind::Diverged);
   EXPECT_EQ(result.iterations, 2);
+}
+
+// A solve that runs out of iterations names what kept it from converging: the contact points
+// that kept switching, as the problem describes them (Model names them by pair, point and mesh
+// node; contact_pair_diagnostics.cpp counts them). Nothing is added when none did.
+TEST(Newton, AFailedSolveNamesTheContactPointsThatKeptSwitching) {
+  struct SwitchingChain : SpringChain {
+    using SpringChain::SpringChain;
+    std::string switching;
+    std::string describeSwitchingContact() override { return switching; }
+  };
+  for (const std::string switching :
+       {std::string(), std::string("2 contact points kept changing")}) {
+    SwitchingChain chain(4, SpringLaw::cubic(1.0, 1.0), {}, [](double t) { return 2.0 * t; });
+    chain.switching = switching;
+    RecordingObserver observer;
+    Eigen::VectorXd u = Eigen::VectorXd::Zero(15);
+    NewtonSpec spec;
+    spec.maxIterations = 2;  // the hardening chain needs more
+    const NewtonResult result = solveStep(chain, observer, spec, u, 1.0);
+    ASSERT_EQ(result.status, NewtonResult::Status::Failed);
+    EXPECT_EQ(result.message.find("no convergence in 2 iterations"), 0u) << result.message;
+    const std::string ending = switching.empty() ? ")" : "); " + switching;
+    EXPECT_TRUE(result.message.ends_with(ending)) << result.message;
+  }
 }
 
 }  // namespace
