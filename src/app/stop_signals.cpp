@@ -54,7 +54,11 @@ sigset_t stopSignals() {
 void watchStopSignals() {
   const sigset_t signals = stopSignals();
   pthread_sigmask(SIG_BLOCK, &signals, nullptr);
-  std::thread(watch, signals).detach();
+  std::thread watcher(watch, signals);
+  // Named, so that a count of a run's computing threads can leave it out (it sleeps in sigwait:
+  // `--threads 1` still computes on one thread; robustness.launcher_environment).
+  pthread_setname_np(watcher.native_handle(), kWatcherThreadName);
+  watcher.detach();
 }
 
 void stopAfterIteration() {

@@ -11,7 +11,9 @@
 namespace cc::app {
 
 // At the start of main, before any other thread exists (threads inherit the blocked signals;
-// so does a re-executed program, which watches again).
+// so does a re-executed program, which watches again). The watching thread is named
+// kWatcherThreadName (/proc/PID/task/TID/comm).
+inline constexpr const char* kWatcherThreadName = "cc-stop-signals";
 void watchStopSignals();
 
 // `run` from the point where a stop keeps every converged step: the first signal requests a

@@ -3,8 +3,9 @@ environment and executes covcontact-engine in its own place, so that the program
 
   --case environment: `run --threads 1` and `--threads 2` of the ironing die deck; while the
       run goes, its process is the engine (/proc/PID/exe), its environment has
-      OMP_WAIT_POLICY=passive and OMP_THREAD_LIMIT=N, and --threads 1 means one OS thread;
-      a user's own OMP_WAIT_POLICY is kept.
+      OMP_WAIT_POLICY=passive and OMP_THREAD_LIMIT=N, and --threads 1 means one OS thread
+      besides the signal watcher (which sleeps in sigwait; checked to have used at most one
+      clock tick of CPU); a user's own OMP_WAIT_POLICY is kept.
   --case missing_program: the launcher alone, without the engine beside it, says which file it
       could not start and exits 70 (an incomplete installation is an internal error).
 """
@@ -31,12 +32,32 @@ def environment_of(pid):
     return dict(e.decode().split("=", 1) for e in entries if b"=" in e)
 
 
+# The engine's one thread that computes nothing: it sleeps in sigwait for SIGINT/SIGTERM
+# (src/app/stop_signals.hpp, kWatcherThreadName).
+SIGNAL_WATCHER = "cc-stop-signals"
+
+
+def task_field(pid, task, name):
+    try:
+        with open(f"/proc/{pid}/task/{task}/{name}") as f:
+            return f.read()
+    except OSError:
+        return ""  # the thread ended meanwhile
+
+
 def thread_count(pid):
-    with open(f"/proc/{pid}/status") as f:
-        for line in f:
-            if line.startswith("Threads:"):
-                return int(line.split()[1])
-    return 0
+    """The process's threads that may compute: all but the signal watcher, which must not have
+    used more than one clock tick of CPU (utime + stime, fields 14 and 15 of its stat)."""
+    count = 0
+    for task in os.listdir(f"/proc/{pid}/task"):
+        if task_field(pid, task, "comm").strip() != SIGNAL_WATCHER:
+            count += 1
+            continue
+        fields = task_field(pid, task, "stat").rsplit(")", 1)[-1].split()
+        ticks = int(fields[11]) + int(fields[12]) if len(fields) > 12 else 0
+        if ticks > 1:
+            fail(f"the signal watcher thread used {ticks} clock ticks of CPU")
+    return count
 
 
 def watch_run(args, threads, extra_environment):
