@@ -257,7 +257,8 @@ int run(const Options& options) {
               model->mesh(), selection);
   double openCloseSeconds = secondsSince(outputStart);
   TimedWriterObserver observer(*model, writer, selection.stress);
-  cc::LoadStepper stepper(*model, observer, model->spec().phases);
+  cc::LoadStepper stepper(*model, observer, model->spec().phases,
+                          spec.linearSolver);  // the deck's solve solver=
   const auto solveStart = Clock::now();
   const cc::RunSummary summary = stepper.run();
   const double solveSeconds = secondsSince(solveStart);
