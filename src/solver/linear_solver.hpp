@@ -138,6 +138,9 @@ inline constexpr FillOrdering kDefaultCholmodOrdering = FillOrdering::NestedDiss
 std::unique_ptr<LinearSolver> makeCholmodSolver(FillOrdering ordering = kDefaultCholmodOrdering);
 // Throws std::invalid_argument for NestedDissection.
 std::unique_ptr<LinearSolver> makeUmfpackSolver(FillOrdering ordering = kDefaultOrdering);
+// The same with the size, in UMFPACK's memory units, beyond which a factorization moves from
+// 32-bit to 64-bit indices (tests lower it to reach the 64-bit routines on small systems).
+std::unique_ptr<LinearSolver> makeUmfpackSolver(FillOrdering ordering, double narrowUnitLimit);
 
 // Makes the BLAS library take its work buffer now, once per process, or throws OutOfMemory if
 // the address space left cannot hold it (OpenBLAS retries a failed allocation of that buffer

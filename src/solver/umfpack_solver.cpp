@@ -1,14 +1,21 @@
 // UMFPACK sparse LU behind the LinearSolver interface (unsymmetric tangents of frictional
-// sliding, and symmetric indefinite ones that CHOLMOD rejects). The 64-bit-index (dl) routines:
-// with 32-bit indices UMFPACK runs out of index space (status -1, "out of memory") once the LU
-// factor passes ~2^31 entries, which a friction model of ~390 k equations already reaches.
+// sliding, and symmetric indefinite ones that CHOLMOD rejects). UMFPACK comes in two index
+// widths. The 32-bit routines (di) read Eigen's own index arrays; the 64-bit ones (dl) need
+// them widened to a copy as large as the matrix's indices (150 MiB at 232 k equations), alive
+// through the factorization, the run's peak. But with 32-bit indices UMFPACK runs out of
+// index space (status -1, "out of memory") once its factor passes ~2^31 units (16 GiB), which
+// a friction model of ~390 k equations reaches. So a solver starts with 32-bit indices and
+// moves to 64-bit ones for good when an analysis estimates a factor beyond them or a 32-bit
+// call runs out of memory (the 64-bit call then says whether memory really is short).
 #include <fmt/format.h>
 #include <umfpack.h>
 
 #include <algorithm>
 #include <chrono>
+#include <climits>
 #include <iterator>
 #include <stdexcept>
+#include <type_traits>
 #include <vector>
 
 #include "common/errors.hpp"
@@ -33,32 +40,104 @@ int umfpackOrdering(FillOrdering ordering) {
   throw std::invalid_argument("UMFPACK has no nested-dissection ordering of its own");
 }
 
-class UmfpackSolver final : public LinearSolver {
+// The calls of the 32-bit (di) and 64-bit (dl) routines that the solver makes.
+struct NarrowIndices {
+  using Index = int;
+  static void defaults(double* control) { umfpack_di_defaults(control); }
+  static Index symbolic(Index n, const Index* starts, const Index* rows, const double* values,
+                        void** symbolic, const double* control, double* info) {
+    return umfpack_di_symbolic(n, n, starts, rows, values, symbolic, control, info);
+  }
+  static Index qsymbolic(Index n, const Index* starts, const Index* rows, const double* values,
+                         Index* ordering, void** symbolic, const double* control, double* info) {
+    return umfpack_di_qsymbolic(n, n, starts, rows, values, ordering, symbolic, control, info);
+  }
+  static Index numeric(const Index* starts, const Index* rows, const double* values, void* symbolic,
+                       void** numeric, const double* control, double* info) {
+    return umfpack_di_numeric(starts, rows, values, symbolic, numeric, control, info);
+  }
+  static Index solve(const Index* starts, const Index* rows, const double* values, double* x,
+                     const double* b, void* numeric, const double* control, double* info) {
+    return umfpack_di_solve(UMFPACK_A, starts, rows, values, x, b, numeric, control, info);
+  }
+  static Index columnOrdering(void* symbolic, Index* ordering) {
+    return umfpack_di_get_symbolic(nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr,
+                                   ordering, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr,
+                                   nullptr, symbolic);
+  }
+  static void freeSymbolic(void** symbolic) { umfpack_di_free_symbolic(symbolic); }
+  static void freeNumeric(void** numeric) { umfpack_di_free_numeric(numeric); }
+};
+
+struct WideIndices {
+  using Index = SuiteSparse_long;
+  static void defaults(double* control) { umfpack_dl_defaults(control); }
+  static Index symbolic(Index n, const Index* starts, const Index* rows, const double* values,
+                        void** symbolic, const double* control, double* info) {
+    return umfpack_dl_symbolic(n, n, starts, rows, values, symbolic, control, info);
+  }
+  static Index qsymbolic(Index n, const Index* starts, const Index* rows, const double* values,
+                         Index* ordering, void** symbolic, const double* control, double* info) {
+    return umfpack_dl_qsymbolic(n, n, starts, rows, values, ordering, symbolic, control, info);
+  }
+  static Index numeric(const Index* starts, const Index* rows, const double* values, void* symbolic,
+                       void** numeric, const double* control, double* info) {
+    return umfpack_dl_numeric(starts, rows, values, symbolic, numeric, control, info);
+  }
+  static Index solve(const Index* starts, const Index* rows, const double* values, double* x,
+                     const double* b, void* numeric, const double* control, double* info) {
+    return umfpack_dl_solve(UMFPACK_A, starts, rows, values, x, b, numeric, control, info);
+  }
+  static Index columnOrdering(void* symbolic, Index* ordering) {
+    return umfpack_dl_get_symbolic(nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr,
+                                   ordering, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr,
+                                   nullptr, symbolic);
+  }
+  static void freeSymbolic(void** symbolic) { umfpack_dl_free_symbolic(symbolic); }
+  static void freeNumeric(void** numeric) { umfpack_dl_free_numeric(numeric); }
+};
+
+static_assert(std::is_same_v<SparseMatrix::StorageIndex, NarrowIndices::Index>,
+              "the 32-bit routines read the tangent's index arrays in place");
+
+// A 32-bit factor that would not fit its index space: the solver moves to 64-bit indices.
+struct IndexSpaceExceeded {};
+
+// Analysis, factor and solves with one index width. Work is counted in the owning solver's
+// statistics.
+template <class Api>
+class UmfpackFactor {
  public:
-  explicit UmfpackSolver(FillOrdering ordering) {
-    umfpack_dl_defaults(control_);
+  using Index = typename Api::Index;
+  static constexpr bool kNarrow = std::is_same_v<Index, int>;
+
+  // unitLimit: the largest factorization, in UMFPACK's memory units, that this width serves.
+  UmfpackFactor(FillOrdering ordering, double unitLimit, LinearSolverStatistics& statistics)
+      : unitLimit_(unitLimit), statistics_(statistics) {
+    Api::defaults(control_);
     control_[UMFPACK_ORDERING] = umfpackOrdering(ordering);
     std::copy(std::begin(control_), std::end(control_), std::begin(unrefinedControl_));
     unrefinedControl_[UMFPACK_IRSTEP] = 0;
   }
-  ~UmfpackSolver() override { release(); }
-  UmfpackSolver(const UmfpackSolver&) = delete;
-  UmfpackSolver& operator=(const UmfpackSolver&) = delete;
+  ~UmfpackFactor() { release(); }
+  UmfpackFactor(const UmfpackFactor&) = delete;
+  UmfpackFactor& operator=(const UmfpackFactor&) = delete;
 
-  std::string name() const override { return "UMFPACK"; }
-
-  void analyzePattern(const SparseMatrix& matrix) override {
-    checkShape(matrix);
-    reserveBlasWorkspace();
+  void analyzePattern(const SparseMatrix& matrix) {
     const auto start = std::chrono::steady_clock::now();
     release();
-    copyIndices(matrix);
-    const SuiteSparse_long size = matrix.rows();
+    widenIndices(matrix);
+    const Index size = matrix.rows();
     const bool reusedOrdering = analyzeWithKeptOrdering(matrix);
-    const SuiteSparse_long status =
-        reusedOrdering ? UMFPACK_OK
-                       : umfpack_dl_symbolic(size, size, columnStarts_.data(), rowIndices_.data(),
+    const Index status = reusedOrdering
+                             ? UMFPACK_OK
+                             : Api::symbolic(size, columnStarts(matrix), rowIndices(matrix),
                                              matrix.valuePtr(), &symbolic_, control_, info_);
+    if (kNarrow && (status == UMFPACK_ERROR_out_of_memory ||
+                    (status == UMFPACK_OK && info_[UMFPACK_NUMERIC_SIZE_ESTIMATE] > unitLimit_))) {
+      release();
+      throw IndexSpaceExceeded{};
+    }
     throwIfOutOfMemory(status, "analysis", matrix);
     if (status != UMFPACK_OK) {
       throw std::runtime_error(fmt::format("UMFPACK analysis failed (status {})", status));
@@ -73,20 +152,19 @@ class UmfpackSolver final : public LinearSolver {
     statistics_.analysisSeconds += secondsSince(start);
   }
 
-  void factorize(const SparseMatrix& matrix) override {
-    checkShape(matrix);
+  void factorize(const SparseMatrix& matrix) {
     if (!symbolic_ || rows(matrix) != size_) {
       throw std::logic_error("UMFPACK: factorize() before analyzePattern() of this pattern");
     }
     const auto start = std::chrono::steady_clock::now();
-    ++statistics_.factorizations;
-    if (numeric_) umfpack_dl_free_numeric(&numeric_);
+    if (numeric_) Api::freeNumeric(&numeric_);
     matrix_ = nullptr;
-    copyIndices(matrix);  // the same pattern as analyzed; cheap next to the factorization
-    const SuiteSparse_long status =
-        umfpack_dl_numeric(columnStarts_.data(), rowIndices_.data(), matrix.valuePtr(), symbolic_,
-                           &numeric_, control_, info_);
+    widenIndices(matrix);  // the same pattern as analyzed; cheap next to the factorization
+    const Index status = Api::numeric(columnStarts(matrix), rowIndices(matrix), matrix.valuePtr(),
+                                      symbolic_, &numeric_, control_, info_);
     statistics_.factorizationSeconds += secondsSince(start);
+    if (kNarrow && status == UMFPACK_ERROR_out_of_memory) throw IndexSpaceExceeded{};
+    ++statistics_.factorizations;
     throwIfOutOfMemory(status, "factorization", matrix);
     if (status == UMFPACK_WARNING_singular_matrix) {
       ++statistics_.failedFactorizations;
@@ -115,49 +193,49 @@ class UmfpackSolver final : public LinearSolver {
     matrix_ = &matrix;
   }
 
-  Eigen::VectorXd solve(const Eigen::VectorXd& rhs) override {
-    const auto start = std::chrono::steady_clock::now();
-    Eigen::VectorXd solution = solveWith(rhs, control_);
-    ++statistics_.solves;
-    statistics_.solveSeconds += secondsSince(start);
-    return solution;
-  }
-
-  // Without refinement UMFPACK does not read the matrix values (which may belong to a later
-  // tangent by now).
-  Eigen::VectorXd applyFactor(const Eigen::VectorXd& rhs) override {
-    return solveWith(rhs, unrefinedControl_);
-  }
-
-  void releaseFactor() override {
-    if (numeric_) umfpack_dl_free_numeric(&numeric_);
-    matrix_ = nullptr;
-  }
-
- private:
-  Eigen::VectorXd solveWith(const Eigen::VectorXd& rhs, const double* control) {
+  // With refinement (control_) UMFPACK reads the factorized matrix; without (unrefinedControl_)
+  // it does not read the matrix at all, which may belong to a later tangent by now.
+  Eigen::VectorXd solve(const Eigen::VectorXd& rhs, bool refine) {
     if (!numeric_ || !matrix_) throw std::logic_error("UMFPACK: solve() without factorization");
     Eigen::VectorXd solution(rhs.size());
-    const SuiteSparse_long status =
-        umfpack_dl_solve(UMFPACK_A, columnStarts_.data(), rowIndices_.data(), matrix_->valuePtr(),
-                         solution.data(), rhs.data(), numeric_, control, info_);
+    const Index status = Api::solve(columnStarts(*matrix_), rowIndices(*matrix_),
+                                    matrix_->valuePtr(), solution.data(), rhs.data(), numeric_,
+                                    refine ? control_ : unrefinedControl_, info_);
     if (status != UMFPACK_OK) {
       throw std::runtime_error(fmt::format("UMFPACK solve failed (status {})", status));
     }
     return solution;
   }
 
-  static int rows(const SparseMatrix& matrix) { return static_cast<int>(matrix.rows()); }
-  static void checkShape(const SparseMatrix& matrix) {
-    if (!matrix.isCompressed() || matrix.rows() != matrix.cols()) {
-      throw std::invalid_argument("UMFPACK: matrix must be square and compressed");
-    }
-  }
-  void release() {
-    if (numeric_) umfpack_dl_free_numeric(&numeric_);
-    if (symbolic_) umfpack_dl_free_symbolic(&symbolic_);
+  void releaseFactor() {
+    if (numeric_) Api::freeNumeric(&numeric_);
     matrix_ = nullptr;
   }
+
+ private:
+  static int rows(const SparseMatrix& matrix) { return static_cast<int>(matrix.rows()); }
+  void release() {
+    if (numeric_) Api::freeNumeric(&numeric_);
+    if (symbolic_) Api::freeSymbolic(&symbolic_);
+    matrix_ = nullptr;
+  }
+
+  // The 32-bit routines read Eigen's arrays in place; the 64-bit ones a widened copy.
+  void widenIndices(const SparseMatrix& matrix) {
+    if constexpr (!kNarrow) {
+      columnStarts_.assign(matrix.outerIndexPtr(), matrix.outerIndexPtr() + matrix.cols() + 1);
+      rowIndices_.assign(matrix.innerIndexPtr(), matrix.innerIndexPtr() + matrix.nonZeros());
+    }
+  }
+  const Index* columnStarts(const SparseMatrix& matrix) const {
+    if constexpr (kNarrow) return matrix.outerIndexPtr();
+    return columnStarts_.data();
+  }
+  const Index* rowIndices(const SparseMatrix& matrix) const {
+    if constexpr (kNarrow) return matrix.innerIndexPtr();
+    return rowIndices_.data();
+  }
+
   // Ordering reuse. The fill-reducing ordering (METIS on A + A^T) is most of an analysis, and a
   // contact run analyzes a new pattern whenever a contact point changes its master segment: on
   // the die-dragging model 73 analyses in 40 steps, at 23 ms each against 68 ms per
@@ -174,23 +252,21 @@ class UmfpackSolver final : public LinearSolver {
         static_cast<Eigen::Index>(ordering_.size()) != matrix.cols()) {
       return false;
     }
-    const SuiteSparse_long size = matrix.rows();
-    const SuiteSparse_long status = umfpack_dl_qsymbolic(
-        size, size, columnStarts_.data(), rowIndices_.data(), matrix.valuePtr(), ordering_.data(),
-        &symbolic_, givenOrderingControl_, info_);
+    const Index size = matrix.rows();
+    const Index status =
+        Api::qsymbolic(size, columnStarts(matrix), rowIndices(matrix), matrix.valuePtr(),
+                       ordering_.data(), &symbolic_, givenOrderingControl_, info_);
     if (status == UMFPACK_OK) {
       ++statistics_.reusedOrderings;
       return true;
     }
-    if (symbolic_) umfpack_dl_free_symbolic(&symbolic_);
+    if (symbolic_) Api::freeSymbolic(&symbolic_);
     return false;
   }
 
   void keepOrdering(const SparseMatrix& matrix) {
     ordering_.assign(static_cast<std::size_t>(matrix.cols()), 0);
-    if (umfpack_dl_get_symbolic(nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr,
-                                ordering_.data(), nullptr, nullptr, nullptr, nullptr, nullptr,
-                                nullptr, nullptr, symbolic_) != UMFPACK_OK) {
+    if (Api::columnOrdering(symbolic_, ordering_.data()) != UMFPACK_OK) {
       ordering_.clear();
       return;
     }
@@ -210,15 +286,10 @@ class UmfpackSolver final : public LinearSolver {
     }
   }
 
-  // Eigen's 32-bit column starts and row indices widened for the dl routines.
-  void copyIndices(const SparseMatrix& matrix) {
-    columnStarts_.assign(matrix.outerIndexPtr(), matrix.outerIndexPtr() + matrix.cols() + 1);
-    rowIndices_.assign(matrix.innerIndexPtr(), matrix.innerIndexPtr() + matrix.nonZeros());
-  }
   // Memory is a limit of the machine, not a step that a smaller load increment could fix.
   // The ordering (METIS, or AMD) reports only failure to UMFPACK (status -18); on a matrix
   // UMFPACK has accepted that failure is an allocation, seen under `ulimit -v` in the analysis.
-  void throwIfOutOfMemory(SuiteSparse_long status, const char* phase, const SparseMatrix& matrix) {
+  void throwIfOutOfMemory(Index status, const char* phase, const SparseMatrix& matrix) {
     if (status == UMFPACK_ERROR_ordering_failed) {
       throw OutOfMemory(fmt::format(
           "UMFPACK's fill-reducing ordering failed in the {} of the {} x {} tangent ({} "
@@ -242,15 +313,17 @@ class UmfpackSolver final : public LinearSolver {
         phase, matrix.rows(), matrix.cols(), matrix.nonZeros(), estimate));
   }
 
+  double unitLimit_;
+  LinearSolverStatistics& statistics_;
   double control_[UMFPACK_CONTROL];
   double unrefinedControl_[UMFPACK_CONTROL];  // control_ with UMFPACK_IRSTEP 0
   double info_[UMFPACK_INFO];
   void* symbolic_ = nullptr;
   void* numeric_ = nullptr;
   const SparseMatrix* matrix_ = nullptr;
-  std::vector<SuiteSparse_long> columnStarts_, rowIndices_;
+  std::vector<Index> columnStarts_, rowIndices_;  // 64-bit only: the widened copies
   int size_ = -1;
-  std::vector<SuiteSparse_long> ordering_;        // column preordering of the last fresh analysis
+  std::vector<Index> ordering_;                   // column preordering of the last fresh analysis
   double givenOrderingControl_[UMFPACK_CONTROL];  // control_ with that analysis's strategy
   double freshOrderingFlops_ = 0;                 // of the first factorization with it
   bool orderingStale_ = false;
@@ -258,10 +331,93 @@ class UmfpackSolver final : public LinearSolver {
   double peakEstimate_ = 0;
 };
 
+class UmfpackSolver final : public LinearSolver {
+ public:
+  UmfpackSolver(FillOrdering ordering, double narrowUnitLimit)
+      : ordering_(ordering),
+        narrow_(std::make_unique<UmfpackFactor<NarrowIndices>>(ordering, narrowUnitLimit,
+                                                               statistics_)) {}
+
+  std::string name() const override { return narrow_ ? "UMFPACK" : "UMFPACK (64-bit indices)"; }
+
+  void analyzePattern(const SparseMatrix& matrix) override {
+    checkShape(matrix);
+    reserveBlasWorkspace();
+    if (narrow_) {
+      try {
+        narrow_->analyzePattern(matrix);
+        return;
+      } catch (const IndexSpaceExceeded&) {
+        widen();
+      }
+    }
+    wide_->analyzePattern(matrix);
+  }
+
+  void factorize(const SparseMatrix& matrix) override {
+    checkShape(matrix);
+    if (narrow_) {
+      try {
+        narrow_->factorize(matrix);
+        return;
+      } catch (const IndexSpaceExceeded&) {
+        widen();
+        wide_->analyzePattern(matrix);
+      }
+    }
+    wide_->factorize(matrix);
+  }
+
+  Eigen::VectorXd solve(const Eigen::VectorXd& rhs) override {
+    const auto start = std::chrono::steady_clock::now();
+    Eigen::VectorXd solution = narrow_ ? narrow_->solve(rhs, true) : wide_->solve(rhs, true);
+    ++statistics_.solves;
+    statistics_.solveSeconds += secondsSince(start);
+    return solution;
+  }
+
+  // Without refinement UMFPACK does not read the matrix values (which may belong to a later
+  // tangent by now).
+  Eigen::VectorXd applyFactor(const Eigen::VectorXd& rhs) override {
+    return narrow_ ? narrow_->solve(rhs, false) : wide_->solve(rhs, false);
+  }
+
+  void releaseFactor() override {
+    if (narrow_) narrow_->releaseFactor();
+    if (wide_) wide_->releaseFactor();
+  }
+
+ private:
+  static void checkShape(const SparseMatrix& matrix) {
+    if (!matrix.isCompressed() || matrix.rows() != matrix.cols()) {
+      throw std::invalid_argument("UMFPACK: matrix must be square and compressed");
+    }
+  }
+  // For good: a model whose factor outgrew 32-bit indices keeps growing in a run.
+  void widen() {
+    narrow_.reset();
+    wide_ = std::make_unique<UmfpackFactor<WideIndices>>(ordering_, 0, statistics_);
+  }
+
+  FillOrdering ordering_;
+  std::unique_ptr<UmfpackFactor<NarrowIndices>> narrow_;
+  std::unique_ptr<UmfpackFactor<WideIndices>> wide_;
+};
+
 }  // namespace
 
+// With 32-bit indices UMFPACK addresses its memory in Units of 8 bytes by 32-bit integers. The
+// analysis's estimate of the factor is an upper bound (its estimate of the factorization's peak
+// is a far looser one: 8.6 GiB and more at 232 k equations, whose factor takes 1.3 GiB); a
+// factorization that needs more than the index range all the same fails with status -1 and is
+// redone with 64-bit indices.
 std::unique_ptr<LinearSolver> makeUmfpackSolver(FillOrdering ordering) {
-  return std::make_unique<UmfpackSolver>(ordering);
+  return makeUmfpackSolver(ordering, INT_MAX);
+}
+
+std::unique_ptr<LinearSolver> makeUmfpackSolver(FillOrdering ordering, double narrowUnitLimit) {
+  umfpackOrdering(ordering);  // throws for an ordering UMFPACK does not have
+  return std::make_unique<UmfpackSolver>(ordering, narrowUnitLimit);
 }
 
 }  // namespace cc

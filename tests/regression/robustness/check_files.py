@@ -38,7 +38,7 @@
   CHOLMOD, UMFPACK's ordering and factorization): each run ends within the timeout with exit 8,
   a message saying what does not fit and the limit, never an internal error, a crash or a hang;
   its file, when it has one, holds the converged steps it reports.
---case out_of_memory_mumps: the same with the plugin: solver=auto factors step 3's 13 872
+--case out_of_memory_mumps: the same with the plugin: solver=auto factors step 3's 16 524
   unsymmetric equations with MUMPS (PETSc and MPI started at that moment). The limit goes just
   under the full run's peak: the message names MUMPS and its analysis's estimate. Lower limits of
   the sweep leave too little to start PETSc and MPI (covcontact then does not try, since Open
@@ -424,7 +424,7 @@ def check_out_of_memory_file(results, stderr, what):
 
 
 def out_of_memory_case(args, solver):
-    """solver=auto sends the deck's 13 872 unsymmetric equations to MUMPS ("mumps"); with the
+    """solver=auto sends the deck's 16 524 unsymmetric equations to MUMPS ("mumps"); with the
     PETSc plugin made unavailable (COVCONTACT_PETSC_MODULE naming no file) auto falls back to
     UMFPACK ("umfpack"), as in a build without PETSc. Steps 1-2 are CHOLMOD's either way."""
     choice = []
@@ -480,7 +480,7 @@ def out_of_memory_case(args, solver):
     check(result.returncode == EXIT_OUT_OF_MEMORY,
           f"run under the limit: exit {result.returncode}, expected {EXIT_OUT_OF_MEMORY}\n"
           f"{result.stdout}{result.stderr}")
-    for fragment in (f"covcontact: error: {name}", " 13872 x 13872 tangent (",
+    for fragment in (f"covcontact: error: {name}", " 16524 x 16524 tangent (",
                      "the LU factor of this model does not fit",
                      f"the address space of the process is limited to {byte_size(limit)}",
                      f"the {OOM_STEPS_APART} converged steps are kept in {limited}"):

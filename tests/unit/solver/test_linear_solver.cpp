@@ -104,6 +104,37 @@ TEST(LinearSolver, UmfpackSolvesUnsymmetricSystem) {
   EXPECT_LT((x - reference).norm(), 1e-12 * reference.norm());
 }
 
+// UMFPACK reads the tangent's 32-bit indices in place and moves to 64-bit indices (a widened
+// copy) for good once an analysis estimates a factor beyond what 32-bit indices address. The
+// limit is lowered here so that the larger of two grids crosses it; both widths must solve.
+TEST(LinearSolver, UmfpackMovesTo64BitIndicesForGoodWhenAFactorOutgrowsThe32BitOnes) {
+  const auto unsymmetric = [](int n) {
+    SparseMatrix matrix = gridLaplacian(n, 0.0);
+    for (int k = 0; k + 1 < matrix.rows(); ++k) matrix.coeffRef(k, k + 1) += 0.3 * (k % 3 == 0);
+    matrix.makeCompressed();
+    return matrix;
+  };
+  const SparseMatrix small = unsymmetric(6), large = unsymmetric(30);
+  auto solver = makeUmfpackSolver(kDefaultOrdering, 2e4);
+  const auto expectSolves = [&](const SparseMatrix& matrix) {
+    solver->analyzePattern(matrix);
+    solver->factorize(matrix);
+    const Eigen::VectorXd rhs = rightHandSide(matrix.rows());
+    const Eigen::VectorXd reference = Eigen::MatrixXd(matrix).partialPivLu().solve(rhs);
+    EXPECT_LT((solver->solve(rhs) - reference).norm(), 1e-12 * reference.norm());
+    EXPECT_LT((solver->applyFactor(rhs) - reference).norm(), 1e-10 * reference.norm());
+  };
+  expectSolves(small);
+  EXPECT_EQ(solver->name(), "UMFPACK");
+  expectSolves(large);
+  EXPECT_EQ(solver->name(), "UMFPACK (64-bit indices)");
+  expectSolves(small);  // a small pattern again stays with the 64-bit routines
+  EXPECT_EQ(solver->name(), "UMFPACK (64-bit indices)");
+  EXPECT_EQ(solver->statistics().analyses, 3);  // the abandoned 32-bit analysis is not counted
+  EXPECT_EQ(solver->statistics().factorizations, 3);
+  EXPECT_EQ(solver->statistics().solves, 3);
+}
+
 // A contact pattern differs from the last by a few couplings: analyzed again, it keeps the
 // fill-reducing ordering of the last fresh analysis. The same grid renumbered at random is an
 // unrelated pattern on which that ordering fills in far more: CHOLMOD, which counts the flops
