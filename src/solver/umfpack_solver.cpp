@@ -40,62 +40,22 @@ int umfpackOrdering(FillOrdering ordering) {
   throw std::invalid_argument("UMFPACK has no nested-dissection ordering of its own");
 }
 
-// The calls of the 32-bit (di) and 64-bit (dl) routines that the solver makes.
-struct NarrowIndices {
-  using Index = int;
-  static void defaults(double* control) { umfpack_di_defaults(control); }
-  static Index symbolic(Index n, const Index* starts, const Index* rows, const double* values,
-                        void** symbolic, const double* control, double* info) {
-    return umfpack_di_symbolic(n, n, starts, rows, values, symbolic, control, info);
+// UMFPACK's routines of one index width: prefix di with int, dl with SuiteSparse_long.
+#define CC_UMFPACK_ROUTINES(Name, IndexType, prefix)                        \
+  struct Name {                                                             \
+    using Index = IndexType;                                                \
+    static constexpr auto defaults = &umfpack_##prefix##_defaults;          \
+    static constexpr auto symbolic = &umfpack_##prefix##_symbolic;          \
+    static constexpr auto qsymbolic = &umfpack_##prefix##_qsymbolic;        \
+    static constexpr auto numeric = &umfpack_##prefix##_numeric;            \
+    static constexpr auto solve = &umfpack_##prefix##_solve;                \
+    static constexpr auto getSymbolic = &umfpack_##prefix##_get_symbolic;   \
+    static constexpr auto freeSymbolic = &umfpack_##prefix##_free_symbolic; \
+    static constexpr auto freeNumeric = &umfpack_##prefix##_free_numeric;   \
   }
-  static Index qsymbolic(Index n, const Index* starts, const Index* rows, const double* values,
-                         Index* ordering, void** symbolic, const double* control, double* info) {
-    return umfpack_di_qsymbolic(n, n, starts, rows, values, ordering, symbolic, control, info);
-  }
-  static Index numeric(const Index* starts, const Index* rows, const double* values, void* symbolic,
-                       void** numeric, const double* control, double* info) {
-    return umfpack_di_numeric(starts, rows, values, symbolic, numeric, control, info);
-  }
-  static Index solve(const Index* starts, const Index* rows, const double* values, double* x,
-                     const double* b, void* numeric, const double* control, double* info) {
-    return umfpack_di_solve(UMFPACK_A, starts, rows, values, x, b, numeric, control, info);
-  }
-  static Index columnOrdering(void* symbolic, Index* ordering) {
-    return umfpack_di_get_symbolic(nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr,
-                                   ordering, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr,
-                                   nullptr, symbolic);
-  }
-  static void freeSymbolic(void** symbolic) { umfpack_di_free_symbolic(symbolic); }
-  static void freeNumeric(void** numeric) { umfpack_di_free_numeric(numeric); }
-};
-
-struct WideIndices {
-  using Index = SuiteSparse_long;
-  static void defaults(double* control) { umfpack_dl_defaults(control); }
-  static Index symbolic(Index n, const Index* starts, const Index* rows, const double* values,
-                        void** symbolic, const double* control, double* info) {
-    return umfpack_dl_symbolic(n, n, starts, rows, values, symbolic, control, info);
-  }
-  static Index qsymbolic(Index n, const Index* starts, const Index* rows, const double* values,
-                         Index* ordering, void** symbolic, const double* control, double* info) {
-    return umfpack_dl_qsymbolic(n, n, starts, rows, values, ordering, symbolic, control, info);
-  }
-  static Index numeric(const Index* starts, const Index* rows, const double* values, void* symbolic,
-                       void** numeric, const double* control, double* info) {
-    return umfpack_dl_numeric(starts, rows, values, symbolic, numeric, control, info);
-  }
-  static Index solve(const Index* starts, const Index* rows, const double* values, double* x,
-                     const double* b, void* numeric, const double* control, double* info) {
-    return umfpack_dl_solve(UMFPACK_A, starts, rows, values, x, b, numeric, control, info);
-  }
-  static Index columnOrdering(void* symbolic, Index* ordering) {
-    return umfpack_dl_get_symbolic(nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr,
-                                   ordering, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr,
-                                   nullptr, symbolic);
-  }
-  static void freeSymbolic(void** symbolic) { umfpack_dl_free_symbolic(symbolic); }
-  static void freeNumeric(void** numeric) { umfpack_dl_free_numeric(numeric); }
-};
+CC_UMFPACK_ROUTINES(NarrowIndices, int, di);
+CC_UMFPACK_ROUTINES(WideIndices, SuiteSparse_long, dl);
+#undef CC_UMFPACK_ROUTINES
 
 static_assert(std::is_same_v<SparseMatrix::StorageIndex, NarrowIndices::Index>,
               "the 32-bit routines read the tangent's index arrays in place");
@@ -131,7 +91,7 @@ class UmfpackFactor {
     const bool reusedOrdering = analyzeWithKeptOrdering(matrix);
     const Index status = reusedOrdering
                              ? UMFPACK_OK
-                             : Api::symbolic(size, columnStarts(matrix), rowIndices(matrix),
+                             : Api::symbolic(size, size, columnStarts(matrix), rowIndices(matrix),
                                              matrix.valuePtr(), &symbolic_, control_, info_);
     if (kNarrow && (status == UMFPACK_ERROR_out_of_memory ||
                     (status == UMFPACK_OK && info_[UMFPACK_NUMERIC_SIZE_ESTIMATE] > unitLimit_))) {
@@ -198,7 +158,7 @@ class UmfpackFactor {
   Eigen::VectorXd solve(const Eigen::VectorXd& rhs, bool refine) {
     if (!numeric_ || !matrix_) throw std::logic_error("UMFPACK: solve() without factorization");
     Eigen::VectorXd solution(rhs.size());
-    const Index status = Api::solve(columnStarts(*matrix_), rowIndices(*matrix_),
+    const Index status = Api::solve(UMFPACK_A, columnStarts(*matrix_), rowIndices(*matrix_),
                                     matrix_->valuePtr(), solution.data(), rhs.data(), numeric_,
                                     refine ? control_ : unrefinedControl_, info_);
     if (status != UMFPACK_OK) {
@@ -254,7 +214,7 @@ class UmfpackFactor {
     }
     const Index size = matrix.rows();
     const Index status =
-        Api::qsymbolic(size, columnStarts(matrix), rowIndices(matrix), matrix.valuePtr(),
+        Api::qsymbolic(size, size, columnStarts(matrix), rowIndices(matrix), matrix.valuePtr(),
                        ordering_.data(), &symbolic_, givenOrderingControl_, info_);
     if (status == UMFPACK_OK) {
       ++statistics_.reusedOrderings;
@@ -266,7 +226,9 @@ class UmfpackFactor {
 
   void keepOrdering(const SparseMatrix& matrix) {
     ordering_.assign(static_cast<std::size_t>(matrix.cols()), 0);
-    if (Api::columnOrdering(symbolic_, ordering_.data()) != UMFPACK_OK) {
+    if (Api::getSymbolic(nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr,
+                         ordering_.data(), nullptr, nullptr, nullptr, nullptr, nullptr, nullptr,
+                         nullptr, symbolic_) != UMFPACK_OK) {
       ordering_.clear();
       return;
     }
