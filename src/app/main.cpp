@@ -1,7 +1,6 @@
 // The `covcontact` command: parses the command line (CLI11) and dispatches to run, check and
 // compare. Exit codes are listed in --help and in common/errors.hpp.
 #include <fmt/format.h>
-#include <malloc.h>
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
@@ -13,6 +12,7 @@
 #include <string>
 
 #include "app/commands.hpp"
+#include "app/heap_policy.hpp"
 #include "app/openmp_environment.hpp"
 #include "app/stop_signals.hpp"
 #include "common/errors.hpp"
@@ -66,21 +66,6 @@ CLI::Validator wholeNumberFromOne() {
 void applyOpenMpEnvironment(char** argv, int threads) {
   if (cc::app::setOpenMpEnvironment(threads)) execv("/proc/self/exe", argv);
   // exec failed (no /proc): go on with the defaults
-}
-
-// UMFPACK allocates its numeric workspace (several MiB at 4 k equations) at every
-// factorization and frees it afterwards. With glibc's defaults such blocks are mmap-ed and
-// returned to the kernel each time, so every factorization page-faults and clears them anew:
-// on example 6.1 (40 x 10 block, 4 k equations, one thread) that was ~40% of the CPU time
-// (perf: page faults 19%, memset 9%, umfdl_mem_alloc_tail_block 10%). Serving blocks up to
-// 32 MiB (glibc's largest mmap threshold) from the heap and keeping up to 1 GiB of freed heap
-// lets the next factorization reuse the same pages: task-clock 3.28 -> 1.63 s, page faults
-// 87 928 -> 6 350 for 11 steps (docs/performance/solvers.md). Larger factors stay mmap-ed;
-// their cost is arithmetic, not allocation.
-void reuseFreedMemory() {
-  mallopt(M_MMAP_THRESHOLD, 32 << 20);
-  mallopt(M_TRIM_THRESHOLD, 1 << 30);
-  mallopt(M_TOP_PAD, 64 << 20);
 }
 
 }  // namespace
@@ -211,7 +196,7 @@ int main(int argc, char** argv) {
     run.threads = cc::app::runThreads(run.threads);
     applyOpenMpEnvironment(argv, run.threads);
   }
-  reuseFreedMemory();
+  cc::app::keepFreedMemory();  // small models; a run of a large one returns it (heap_policy)
   try {
     // PETSc (and MPI) are started by the first PETSc solver only; finalized once here.
     struct PetscFinalizer {

@@ -19,6 +19,7 @@
 
 #include "app/allocation_failure.hpp"
 #include "app/commands.hpp"
+#include "app/heap_policy.hpp"
 #include "app/progress.hpp"
 #include "app/restart.hpp"
 #include "app/stop_signals.hpp"
@@ -350,6 +351,7 @@ int runCommand(const RunOptions& options) {
     }
   }
   const ProblemSpec& spec = model->spec();
+  chooseHeapPolicy(static_cast<std::size_t>(model->dofMap().numFree()));
   const bool quiet = options.quiet || !writes;
   if (!quiet) {
     printOut(fmt::format("{}: {} nodes, {} elements, {} equations, {} contact points, {} threads\n",
