@@ -47,17 +47,21 @@ def task_field(pid, task, name):
 
 def thread_count(pid):
     """The process's threads that may compute: all but the signal watcher, which must not have
-    used more than one clock tick of CPU (utime + stime, fields 14 and 15 of its stat)."""
-    count = 0
+    used more than one clock tick of CPU (utime + stime, fields 14 and 15 of its stat). None
+    until the watcher carries its name: main starts it first of all and names it just after, so
+    until then the process has main and the unnamed watcher only (a loaded machine caught that
+    moment in CI)."""
+    count, watcher = 0, False
     for task in os.listdir(f"/proc/{pid}/task"):
         if task_field(pid, task, "comm").strip() != SIGNAL_WATCHER:
             count += 1
             continue
+        watcher = True
         fields = task_field(pid, task, "stat").rsplit(")", 1)[-1].split()
         ticks = int(fields[11]) + int(fields[12]) if len(fields) > 12 else 0
         if ticks > 1:
             fail(f"the signal watcher thread used {ticks} clock ticks of CPU")
-    return count
+    return count if watcher else None
 
 
 def watch_run(args, threads, extra_environment):
@@ -71,13 +75,15 @@ def watch_run(args, threads, extra_environment):
                                 os.path.join(args.scratch, f"die_{threads}.h5")],
                                env=environment, stdout=subprocess.DEVNULL,
                                stderr=subprocess.PIPE, text=True)
-    seen, most_threads, started = None, 0, time.time()
+    seen, most_threads, started = None, None, time.time()
     try:
         while time.time() - started < WATCH_SECONDS and process.poll() is None:
             try:
                 if os.readlink(f"/proc/{process.pid}/exe").endswith("/covcontact-engine"):
                     seen = seen or environment_of(process.pid)
-                    most_threads = max(most_threads, thread_count(process.pid))
+                    count = thread_count(process.pid)
+                    if count is not None:
+                        most_threads = max(most_threads or 0, count)
             except (FileNotFoundError, ProcessLookupError):
                 break
             time.sleep(0.005)
@@ -87,6 +93,8 @@ def watch_run(args, threads, extra_environment):
     if seen is None:
         fail(f"--threads {threads}: the process never became covcontact-engine "
              f"(exit {process.returncode}): {process.stderr.read()[-2000:]}")
+    if most_threads is None:
+        fail(f"--threads {threads}: no thread named {SIGNAL_WATCHER} in {WATCH_SECONDS} s")
     return seen, most_threads
 
 
