@@ -8,7 +8,6 @@
 #include <fmt/format.h>
 #include <omp.h>
 #include <sys/resource.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
