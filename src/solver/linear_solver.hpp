@@ -41,6 +41,9 @@ struct LinearSolverStatistics {
   // Analyses that kept the fill-reducing ordering of an earlier pattern of the same size
   // (CHOLMOD and UMFPACK: a contact pattern differs from the last by a few couplings).
   int reusedOrderings = 0;
+  // UMFPACK: times a factorization grew its workspace (from the compact start of a large
+  // system, umfpackInitialAllocation).
+  int workspaceGrowths = 0;
   // Several processes: bytes this process sent for matrix entries of rows another process
   // owns, and received of the solution (the direct solver's own traffic is not counted).
   double matrixBytesSent = 0;
@@ -141,6 +144,29 @@ std::unique_ptr<LinearSolver> makeUmfpackSolver(FillOrdering ordering = kDefault
 // The same with the size, in UMFPACK's memory units, beyond which a factorization moves from
 // 32-bit to 64-bit indices (tests lower it to reach the 64-bit routines on small systems).
 std::unique_ptr<LinearSolver> makeUmfpackSolver(FillOrdering ordering, double narrowUnitLimit);
+// And with the size from which a factorization starts from a compact workspace (tests lower it).
+std::unique_ptr<LinearSolver> makeUmfpackSolver(FillOrdering ordering, double narrowUnitLimit,
+                                                Eigen::Index compactWorkspaceFrom);
+
+// UMFPACK keeps the factor (L, U) at the bottom of one workspace and its working data (the
+// matrix's entries, the fronts' contributions) at the top, meeting in the middle. Its default
+// first workspace is sized from the analysis's estimate, a loose upper bound (9.0 GiB for a
+// 1.35 GiB factor at 232 k equations, capped near 2 GiB), so the two ends touch separate pages
+// and the process holds the factor plus the largest extent of the working data (1.84 GiB for
+// that 1.35 GiB factor). Started compact, the workspace grows as the factor does (UMFPACK moves
+// the working data up at each growth) and the two share pages: 1.63 GiB there, the
+// factorization as fast (docs/performance/solvers.md, eighteenth session). From this many
+// equations, where memory limits a direct solve (solver=auto leaves the direct solvers there),
+// a factorization starts compact; smaller systems keep the default, which grows less often.
+inline constexpr Eigen::Index kCompactUmfpackWorkspaceFrom = 50000;
+// Fraction of the analysis's factor estimate a compact workspace starts with.
+inline constexpr double kCompactUmfpackWorkspace = 0.1;
+// The value of UMFPACK's control UMFPACK_ALLOC_INIT for a system of `equations` whose analysis
+// estimated the factor at `factorEstimateUnits` of UMFPACK's memory units: its default (0.7:
+// a fraction of the estimate) below `compactFrom`, from there minus the compact start in units
+// (a negative value is a size).
+double umfpackInitialAllocation(Eigen::Index equations, double factorEstimateUnits,
+                                Eigen::Index compactFrom = kCompactUmfpackWorkspaceFrom);
 
 // Makes the BLAS library take its work buffer now, once per process, or throws OutOfMemory if
 // the address space left cannot hold it (OpenBLAS retries a failed allocation of that buffer

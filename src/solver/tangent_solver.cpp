@@ -28,6 +28,7 @@ LinearSolverStatistics& LinearSolverStatistics::operator+=(const LinearSolverSta
   krylovFallbacks += other.krylovFallbacks;
   reusedPreconditioners += other.reusedPreconditioners;
   reusedOrderings += other.reusedOrderings;
+  workspaceGrowths += other.workspaceGrowths;
   matrixBytesSent += other.matrixBytesSent;
   solutionBytesReceived += other.solutionBytesReceived;
   return *this;

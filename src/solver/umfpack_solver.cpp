@@ -71,9 +71,11 @@ class UmfpackFactor {
   using Index = typename Api::Index;
   static constexpr bool kNarrow = std::is_same_v<Index, int>;
 
-  // unitLimit: the largest factorization, in UMFPACK's memory units, that this width serves.
-  UmfpackFactor(FillOrdering ordering, double unitLimit, LinearSolverStatistics& statistics)
-      : unitLimit_(unitLimit), statistics_(statistics) {
+  // unitLimit: the largest factorization, in UMFPACK's memory units, that this width serves;
+  // compactFrom: the size from which a factorization starts from a compact workspace.
+  UmfpackFactor(FillOrdering ordering, double unitLimit, Eigen::Index compactFrom,
+                LinearSolverStatistics& statistics)
+      : unitLimit_(unitLimit), compactFrom_(compactFrom), statistics_(statistics) {
     Api::defaults(control_);
     control_[UMFPACK_ORDERING] = umfpackOrdering(ordering);
     std::copy(std::begin(control_), std::end(control_), std::begin(unrefinedControl_));
@@ -104,7 +106,8 @@ class UmfpackFactor {
     }
     // The analysis's own estimates, kept for an out-of-memory message of the factorization
     // (which overwrites info_).
-    factorEstimate_ = info_[UMFPACK_NUMERIC_SIZE_ESTIMATE] * info_[UMFPACK_SIZE_OF_UNIT];
+    factorEstimateUnits_ = info_[UMFPACK_NUMERIC_SIZE_ESTIMATE];
+    factorEstimate_ = factorEstimateUnits_ * info_[UMFPACK_SIZE_OF_UNIT];
     peakEstimate_ = info_[UMFPACK_PEAK_MEMORY_ESTIMATE] * info_[UMFPACK_SIZE_OF_UNIT];
     if (!reusedOrdering) keepOrdering(matrix);
     size_ = rows(matrix);
@@ -120,11 +123,14 @@ class UmfpackFactor {
     if (numeric_) Api::freeNumeric(&numeric_);
     matrix_ = nullptr;
     widenIndices(matrix);  // the same pattern as analyzed; cheap next to the factorization
+    control_[UMFPACK_ALLOC_INIT] =
+        umfpackInitialAllocation(matrix.rows(), factorEstimateUnits_, compactFrom_);
     const Index status = Api::numeric(columnStarts(matrix), rowIndices(matrix), matrix.valuePtr(),
                                       symbolic_, &numeric_, control_, info_);
     statistics_.factorizationSeconds += secondsSince(start);
     if (kNarrow && status == UMFPACK_ERROR_out_of_memory) throw IndexSpaceExceeded{};
     ++statistics_.factorizations;
+    statistics_.workspaceGrowths += static_cast<int>(std::max(0.0, info_[UMFPACK_NUMERIC_REALLOC]));
     throwIfOutOfMemory(status, "factorization", matrix);
     if (status == UMFPACK_WARNING_singular_matrix) {
       ++statistics_.failedFactorizations;
@@ -276,6 +282,7 @@ class UmfpackFactor {
   }
 
   double unitLimit_;
+  Eigen::Index compactFrom_;
   LinearSolverStatistics& statistics_;
   double control_[UMFPACK_CONTROL];
   double unrefinedControl_[UMFPACK_CONTROL];  // control_ with UMFPACK_IRSTEP 0
@@ -289,16 +296,18 @@ class UmfpackFactor {
   double givenOrderingControl_[UMFPACK_CONTROL];  // control_ with that analysis's strategy
   double freshOrderingFlops_ = 0;                 // of the first factorization with it
   bool orderingStale_ = false;
-  double factorEstimate_ = 0;  // bytes, from the last analysis
+  double factorEstimateUnits_ = 0;  // UMFPACK's units, from the last analysis
+  double factorEstimate_ = 0;       // bytes, the same
   double peakEstimate_ = 0;
 };
 
 class UmfpackSolver final : public LinearSolver {
  public:
-  UmfpackSolver(FillOrdering ordering, double narrowUnitLimit)
+  UmfpackSolver(FillOrdering ordering, double narrowUnitLimit, Eigen::Index compactFrom)
       : ordering_(ordering),
+        compactFrom_(compactFrom),
         narrow_(std::make_unique<UmfpackFactor<NarrowIndices>>(ordering, narrowUnitLimit,
-                                                               statistics_)) {}
+                                                               compactFrom, statistics_)) {}
 
   std::string name() const override { return narrow_ ? "UMFPACK" : "UMFPACK (64-bit indices)"; }
 
@@ -358,10 +367,11 @@ class UmfpackSolver final : public LinearSolver {
   // For good: a model whose factor outgrew 32-bit indices keeps growing in a run.
   void widen() {
     narrow_.reset();
-    wide_ = std::make_unique<UmfpackFactor<WideIndices>>(ordering_, 0, statistics_);
+    wide_ = std::make_unique<UmfpackFactor<WideIndices>>(ordering_, 0, compactFrom_, statistics_);
   }
 
   FillOrdering ordering_;
+  Eigen::Index compactFrom_;
   std::unique_ptr<UmfpackFactor<NarrowIndices>> narrow_;
   std::unique_ptr<UmfpackFactor<WideIndices>> wide_;
 };
@@ -378,8 +388,19 @@ std::unique_ptr<LinearSolver> makeUmfpackSolver(FillOrdering ordering) {
 }
 
 std::unique_ptr<LinearSolver> makeUmfpackSolver(FillOrdering ordering, double narrowUnitLimit) {
+  return makeUmfpackSolver(ordering, narrowUnitLimit, kCompactUmfpackWorkspaceFrom);
+}
+
+std::unique_ptr<LinearSolver> makeUmfpackSolver(FillOrdering ordering, double narrowUnitLimit,
+                                                Eigen::Index compactWorkspaceFrom) {
   umfpackOrdering(ordering);  // throws for an ordering UMFPACK does not have
-  return std::make_unique<UmfpackSolver>(ordering, narrowUnitLimit);
+  return std::make_unique<UmfpackSolver>(ordering, narrowUnitLimit, compactWorkspaceFrom);
+}
+
+double umfpackInitialAllocation(Eigen::Index equations, double factorEstimateUnits,
+                                Eigen::Index compactFrom) {
+  if (equations < compactFrom || !(factorEstimateUnits > 0)) return UMFPACK_DEFAULT_ALLOC_INIT;
+  return -kCompactUmfpackWorkspace * factorEstimateUnits;
 }
 
 }  // namespace cc

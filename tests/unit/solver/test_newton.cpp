@@ -226,7 +226,7 @@ TEST(Newton, AFailedSolveNamesTheContactPointsThatKeptSwitching) {
     std::string switching;
     std::string describeSwitchingContact() override { return switching; }
   };
-  for (const std::string switching :
+  for (const std::string& switching :
        {std::string(), std::string("2 contact points kept changing")}) {
     SwitchingChain chain(4, SpringLaw::cubic(1.0, 1.0), {}, [](double t) { return 2.0 * t; });
     chain.switching = switching;
