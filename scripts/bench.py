@@ -16,6 +16,9 @@ CalculiX (`calculix-ccx`, installed by scripts/install-deps.sh). It runs:
   blas       the same factorizations with OpenBLAS (serial) and the reference BLAS;
   search     the contact search alone on surfaces with 10 k to 1 M contact points;
   calculix   CalculiX 2.20 and `covcontact run` on the same mesh and loading, side by side;
+  memory     the memory target's run: 232 k dofs with the direct solvers (`--solver cholmod`:
+             CHOLMOD while sticking, UMFPACK after), peak RSS against the largest factor + mesh
+             (the scaling runs there use the deck's solver=auto, which solves iteratively);
 
 and writes docs/performance/results.json (every number measured), tables.md and the log-log
 plots. `--only PART[,PART]` runs some parts, `--report` only redraws tables and plots from
@@ -89,6 +92,8 @@ BLAS_SIZES = ["57k", "125k"]
 # The 1 vs 2 threads comparison (--threads-study): sizes large enough that assembly dominates
 # thread start-up, small enough to rerun in a few minutes on an idle machine (~3 min).
 THREADS_STUDY_SIZES = ["20k", "57k"]
+# The memory target's size (issue 8: peak RSS <= 1.5 x (factor + mesh) at 232 k dofs).
+MEMORY_SIZE = "232k"
 
 LIMIT_SECONDS = 15 * 60
 LIMIT_BYTES = 24 * 2**30
@@ -149,7 +154,7 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--build", default=os.path.join(ROOT, "build"), help="build directory")
-    parser.add_argument("--only", default="scaling,orderings,blas,search,calculix",
+    parser.add_argument("--only", default="scaling,orderings,blas,search,calculix,memory",
                         help="parts to run (comma separated)")
     parser.add_argument("--sizes", help="scaling sizes to run (comma separated names)")
     parser.add_argument("--search-sizes", default=",".join(n for n, _ in SEARCH_SIZES),
@@ -207,6 +212,9 @@ def main():
             results["blas"] = runner.blas(
                 [(n, deck_path("scaling", n)) for n in BLAS_SIZES[:1 if args.quick else None]],
                 BLAS_VARIANTS)
+            save(results, results_path)
+        if "memory" in parts:
+            results["memory"] = runner.memory(MEMORY_SIZE, deck_path("scaling", MEMORY_SIZE))
             save(results, results_path)
         if "search" in parts:
             results["search"] = runner.series(

@@ -127,6 +127,19 @@ class Runner:
                 break
         return {"runs": runs, "stopped": stopped}
 
+    def memory(self, name, deck):
+        """One run with the direct solvers (CHOLMOD, UMFPACK once friction slips), whose largest
+        factor the memory target compares the peak RSS with. It takes ~10 min at 232 k on an
+        idle machine, so it gets twice the scaling runs' time limit."""
+        limit = self.limit_seconds
+        self.limit_seconds = 2 * limit
+        try:
+            result = self.run_driver(name, deck, 1, ["--solver", "cholmod", "-o", "run.h5"])
+        finally:
+            self.limit_seconds = limit
+        result["size"] = name
+        return result
+
     def series(self, sizes, mode):
         """The driver in `mode` ("--orderings" or "--search") on each size, one thread, up to
         the first run stopped by a limit."""

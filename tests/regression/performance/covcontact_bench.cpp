@@ -3,7 +3,9 @@
 // assembly, contact search, contact kernel, pattern rebuilds, linear-solver analysis,
 // factorization and solve, output, and the work counters. scripts/bench.py drives it.
 //
-//   covcontact_bench DECK [-o RESULTS.h5] [--threads N]
+//   covcontact_bench DECK [-o RESULTS.h5] [--threads N] [--solver NAME]
+// (--solver as `covcontact run --solver`: scripts/bench.py's memory part runs the direct solvers
+// at 232 k, where the deck's solver=auto solves iteratively and no factor exists.)
 //   covcontact_bench DECK --orderings [--threads N]
 // The second form assembles the deck's first tangent (contact included) and factorizes it with
 // CHOLMOD under each fill-reducing ordering (AMD, METIS, NESDIS), one JSON object per ordering.
@@ -30,6 +32,7 @@
 
 #include "common/errors.hpp"
 #include "deck/deck_parser.hpp"
+#include "deck/spec_choices.hpp"
 #include "model/model.hpp"
 #include "output/results_writer.hpp"
 #include "solver/linear_solver.hpp"
@@ -83,6 +86,7 @@ struct Options {
   std::string deck;
   std::string output;
   int threads = 0;
+  std::string solver;  // overrides the deck's `solve solver=` (the memory target's direct run)
   bool orderings = false;
   bool search = false;
 };
@@ -100,6 +104,9 @@ Options parseOptions(int argc, char** argv) {
       options.search = true;
     } else if (argument == "--threads" && hasValue) {
       options.threads = std::stoi(argv[++k]);
+    } else if (argument == "--solver" && hasValue) {
+      options.solver = argv[++k];
+      (void)cc::deck::choiceValue(cc::deck::linearSolverMethods(), options.solver);
     } else if (options.deck.empty() && !argument.starts_with("-")) {
       options.deck = argument;
     } else {
@@ -108,7 +115,8 @@ Options parseOptions(int argc, char** argv) {
   }
   if (options.deck.empty()) {
     throw std::invalid_argument(
-        "usage: covcontact_bench DECK [-o RESULTS.h5 | --orderings | --search] [--threads N]");
+        "usage: covcontact_bench DECK [-o RESULTS.h5 | --orderings | --search] [--threads N] "
+        "[--solver NAME]");
   }
   return options;
 }
@@ -243,7 +251,11 @@ int timeSearch(const Options& options) {
 int run(const Options& options) {
   const auto start = Clock::now();
   if (options.threads > 0) omp_set_num_threads(options.threads);
-  const cc::ProblemSpec spec = cc::parseDeck(options.deck);
+  cc::ProblemSpec spec = cc::parseDeck(options.deck);
+  if (!options.solver.empty()) {
+    spec.linearSolver.method =
+        cc::deck::choiceValue(cc::deck::linearSolverMethods(), options.solver);
+  }
   const std::string path = options.output.empty()
                                ? std::filesystem::path(options.deck).stem().string() + ".h5"
                                : options.output;
@@ -252,20 +264,28 @@ int run(const Options& options) {
   const double setupSeconds = secondsSince(start);
 
   cc::ResultsWriter writer;
+  std::vector<std::string> inputFiles = spec.deckFiles;  // never replaced by the results
+  inputFiles.push_back(spec.mesh.path);
   auto outputStart = Clock::now();
-  writer.open(path, {spec.deckText, options.deck, spec.title, COVCONTACT_VERSION, options.deck},
-              model->mesh(), selection);
+  writer.open(
+      path, {spec.deckText, options.deck, spec.title, COVCONTACT_VERSION, options.deck, inputFiles},
+      model->mesh(), selection);
   double openCloseSeconds = secondsSince(outputStart);
   TimedWriterObserver observer(*model, writer, selection.stress);
   cc::LoadStepper stepper(*model, observer, model->spec().phases,
-                          spec.linearSolver);  // the deck's solve solver=
+                          spec.linearSolver);  // the deck's solve solver= or --solver
   const auto solveStart = Clock::now();
   const cc::RunSummary summary = stepper.run();
   const double solveSeconds = secondsSince(solveStart);
   outputStart = Clock::now();
-  writer.close({summary.outcome == cc::RunSummary::Outcome::Completed ? "completed" : "failed",
-                summary.stepsConverged, summary.totalIterations, summary.totalCutbacks,
-                secondsSince(start), summary.message});
+  cc::RunTotals totals;
+  totals.outcome = summary.outcome == cc::RunSummary::Outcome::Completed ? "completed" : "failed";
+  totals.steps = summary.stepsConverged;
+  totals.totalIterations = summary.totalIterations;
+  totals.cutbacks = summary.totalCutbacks;
+  totals.wallSeconds = secondsSince(start);
+  totals.message = summary.message;
+  writer.close(totals);
   openCloseSeconds += secondsSince(outputStart);
   const double totalSeconds = secondsSince(start);
 
