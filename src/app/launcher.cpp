@@ -1,5 +1,6 @@
 // The `covcontact` command as the user starts it: a launcher that puts the OpenMP settings of a
-// run into the environment (app/openmp_environment.hpp) and then executes the program,
+// run and the BLAS kernels (app/openmp_environment.hpp, app/blas_environment.hpp) into the
+// environment and then executes the program,
 // covcontact-engine beside it, in its own place (same process, same arguments).
 // Why a launcher: libgomp reads those settings only when it is loaded, so the program used to
 // re-execute itself with them set. It links ~140 shared libraries (gmsh brings OpenCASCADE,
@@ -16,6 +17,7 @@
 #include <string>
 #include <string_view>
 
+#include "app/blas_environment.hpp"
 #include "app/openmp_environment.hpp"
 
 namespace {
@@ -54,6 +56,7 @@ int main(int argc, char** argv) {
   if (argc > 1 && std::string_view(argv[1]) == "run") {
     cc::app::setOpenMpEnvironment(cc::app::runThreads(requestedThreads(argc, argv)));
   }
+  cc::app::setBlasEnvironment();  // every command: check and compare load OpenBLAS too
   const std::string engine = enginePath(argv[0]);
   execv(engine.c_str(), argv);
   std::fprintf(stderr, "covcontact: cannot start the program %s: %s\n", engine.c_str(),

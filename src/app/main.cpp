@@ -11,6 +11,7 @@
 #include <limits>
 #include <string>
 
+#include "app/blas_environment.hpp"
 #include "app/commands.hpp"
 #include "app/heap_policy.hpp"
 #include "app/openmp_environment.hpp"
@@ -61,10 +62,12 @@ CLI::Validator wholeNumberFromOne() {
 }
 
 // Started directly rather than through the `covcontact` launcher (app/launcher.cpp), the
-// program puts the OpenMP settings of a run into the environment itself and re-executes itself
-// once with them (libgomp reads them only when it is loaded).
+// program puts the OpenMP settings and BLAS kernels of a run into the environment itself and
+// re-executes itself once with them (libgomp and OpenBLAS read them only when they are loaded).
 void applyOpenMpEnvironment(char** argv, int threads) {
-  if (cc::app::setOpenMpEnvironment(threads)) execv("/proc/self/exe", argv);
+  const bool openMp = cc::app::setOpenMpEnvironment(threads);
+  const bool blas = cc::app::setBlasEnvironment();
+  if (openMp || blas) execv("/proc/self/exe", argv);
   // exec failed (no /proc): go on with the defaults
 }
 

@@ -5,7 +5,8 @@ environment and executes covcontact-engine in its own place, so that the program
       run goes, its process is the engine (/proc/PID/exe), its environment has
       OMP_WAIT_POLICY=passive and OMP_THREAD_LIMIT=N, and --threads 1 means one OS thread
       besides the signal watcher (which sleeps in sigwait; checked to have used at most one
-      clock tick of CPU); a user's own OMP_WAIT_POLICY is kept.
+      clock tick of CPU); a user's own OMP_WAIT_POLICY is kept; OPENBLAS_CORETYPE is the
+      core type of this CPU's instruction sets (/proc/cpuinfo), and a user's own is kept.
   --case missing_program: the launcher alone, without the engine beside it, says which file it
       could not start and exits 70 (an incomplete installation is an internal error).
 """
@@ -69,7 +70,8 @@ def watch_run(args, threads, extra_environment):
     returns (its environment as the engine saw it, the most OS threads it had)."""
     deck = os.path.join(args.scratch, "ironing_die.deck")
     open(deck, "w").write(stress_script.ironing_deck_text(args, "ironing_sts_mu03_wide.deck"))
-    environment = {k: v for k, v in os.environ.items() if not k.startswith("OMP_")}
+    environment = {k: v for k, v in os.environ.items()
+                   if not k.startswith("OMP_") and k != "OPENBLAS_CORETYPE"}
     environment.update(extra_environment)
     process = subprocess.Popen([args.covcontact, "run", deck, "--threads", str(threads), "-o",
                                 os.path.join(args.scratch, f"die_{threads}.h5")],
@@ -98,7 +100,22 @@ def watch_run(args, threads, extra_environment):
     return seen, most_threads
 
 
+def expected_openblas_core():
+    """The OpenBLAS core type for this CPU by its flags in /proc/cpuinfo (the program asks the
+    CPU itself): AVX2 + FMA -> Haswell (with or without AVX-512), else none."""
+    flags = set()
+    with open("/proc/cpuinfo") as f:
+        for line in f:
+            if line.startswith("flags"):
+                flags = set(line.split(":", 1)[1].split())
+                break
+    if {"avx2", "fma"} <= flags:
+        return "Haswell"
+    return None
+
+
 def environment_case(args):
+    expected_core = expected_openblas_core()
     for threads in (1, 2):
         seen, most = watch_run(args, threads, {})
         print(f"--threads {threads}: OMP_WAIT_POLICY={seen.get('OMP_WAIT_POLICY')} "
@@ -107,10 +124,18 @@ def environment_case(args):
             fail(f"--threads {threads}: the engine did not get the OpenMP settings")
         if most > threads:
             fail(f"--threads {threads}: the run had {most} OS threads")
+        print(f"--threads {threads}: OPENBLAS_CORETYPE={seen.get('OPENBLAS_CORETYPE')} "
+              f"(expected from /proc/cpuinfo: {expected_core})")
+        if seen.get("OPENBLAS_CORETYPE") != expected_core:
+            fail(f"--threads {threads}: the engine did not get the BLAS kernels of this CPU")
     seen, _ = watch_run(args, 1, {"OMP_WAIT_POLICY": "active"})
     if seen.get("OMP_WAIT_POLICY") != "active":
         fail("a user's OMP_WAIT_POLICY=active was overridden")
     print("a user's OMP_WAIT_POLICY=active is kept")
+    seen, _ = watch_run(args, 1, {"OPENBLAS_CORETYPE": "Sandybridge"})
+    if seen.get("OPENBLAS_CORETYPE") != "Sandybridge":
+        fail("a user's OPENBLAS_CORETYPE=Sandybridge was overridden")
+    print("a user's OPENBLAS_CORETYPE=Sandybridge is kept")
 
 
 def missing_program_case(args):
