@@ -100,14 +100,15 @@ class Runner:
         env.setdefault("OMP_WAIT_POLICY", "PASSIVE")
         return env
 
-    def run_driver(self, name, deck, threads, extra, library_path=None):
+    def run_driver(self, name, deck, threads, extra, library_path=None, limit_seconds=None):
         cwd = os.path.join(self.work, f"{name}_t{threads}_{extra[0].strip('-') if extra else 'run'}")
         command = [self.driver, deck, "--threads", str(threads)] + (extra or ["-o", "run.h5"])
         print(f"bench: {' '.join(command)}", flush=True)
         env = self.environment(threads)
         if library_path:
             env["LD_LIBRARY_PATH"] = library_path
-        result = measure(command, cwd, env, self.limit_seconds, self.limit_bytes)
+        result = measure(command, cwd, env, limit_seconds or self.limit_seconds,
+                         self.limit_bytes)
         result["records"] = json_lines(result.pop("stdout"))
         shutil.rmtree(cwd, ignore_errors=True)
         return result
@@ -131,12 +132,8 @@ class Runner:
         """One run with the direct solvers (CHOLMOD, UMFPACK once friction slips), whose largest
         factor the memory target compares the peak RSS with. It takes ~10 min at 232 k on an
         idle machine, so it gets twice the scaling runs' time limit."""
-        limit = self.limit_seconds
-        self.limit_seconds = 2 * limit
-        try:
-            result = self.run_driver(name, deck, 1, ["--solver", "cholmod", "-o", "run.h5"])
-        finally:
-            self.limit_seconds = limit
+        result = self.run_driver(name, deck, 1, ["--solver", "cholmod", "-o", "run.h5"],
+                                 limit_seconds=2 * self.limit_seconds)
         result["size"] = name
         return result
 

@@ -5,6 +5,8 @@
 
 #include <cstddef>
 
+#include "solver/linear_solver.hpp"
+
 namespace cc::app {
 
 // At the start of main: serve blocks up to 32 MiB from the heap and keep freed heap memory.
@@ -12,7 +14,7 @@ void keepFreedMemory();
 
 // Once the model is built: from kReturnFreedMemoryFrom free equations on, glibc's own thresholds
 // (128 KiB) again, so that freed memory goes back to the system.
-inline constexpr std::size_t kReturnFreedMemoryFrom = 50000;
+inline constexpr std::size_t kReturnFreedMemoryFrom = kMemoryBoundSystemFrom;
 void chooseHeapPolicy(std::size_t freeEquations);
 
 }  // namespace cc::app

@@ -64,7 +64,7 @@ CLI::Validator wholeNumberFromOne() {
 // Started directly rather than through the `covcontact` launcher (app/launcher.cpp), the
 // program puts the OpenMP settings and BLAS kernels of a run into the environment itself and
 // re-executes itself once with them (libgomp and OpenBLAS read them only when they are loaded).
-void applyOpenMpEnvironment(char** argv, int threads) {
+void applyRunEnvironment(char** argv, int threads) {
   const bool openMp = cc::app::setOpenMpEnvironment(threads);
   const bool blas = cc::app::setBlasEnvironment();
   if (openMp || blas) execv("/proc/self/exe", argv);
@@ -197,7 +197,7 @@ int main(int argc, char** argv) {
 
   if (*runCommand) {
     run.threads = cc::app::runThreads(run.threads);
-    applyOpenMpEnvironment(argv, run.threads);
+    applyRunEnvironment(argv, run.threads);
   }
   cc::app::keepFreedMemory();  // small models; a run of a large one returns it (heap_policy)
   try {

@@ -155,10 +155,14 @@ std::unique_ptr<LinearSolver> makeUmfpackSolver(FillOrdering ordering, double na
 // and the process holds the factor plus the largest extent of the working data (1.84 GiB for
 // that 1.35 GiB factor). Started compact, the workspace grows as the factor does (UMFPACK moves
 // the working data up at each growth) and the two share pages: 1.63 GiB there, the
-// factorization as fast (docs/performance/solvers.md, eighteenth session). From this many
-// equations, where memory limits a direct solve (solver=auto leaves the direct solvers there),
-// a factorization starts compact; smaller systems keep the default, which grows less often.
-inline constexpr Eigen::Index kCompactUmfpackWorkspaceFrom = 50000;
+// factorization as fast (docs/performance/solvers.md, eighteenth session). From
+// kMemoryBoundSystemFrom equations a factorization starts compact; smaller systems keep the
+// default, which grows less often.
+//
+// The size from which memory, not the allocations' cost, limits a direct solve: where
+// solver=auto leaves the direct solvers (kIterativeBreakEven, measured), UMFPACK starts its
+// workspace compact and the engine's heap returns freed memory (app/heap_policy.hpp).
+inline constexpr Eigen::Index kMemoryBoundSystemFrom = 50000;
 // Fraction of the analysis's factor estimate a compact workspace starts with.
 inline constexpr double kCompactUmfpackWorkspace = 0.1;
 // The value of UMFPACK's control UMFPACK_ALLOC_INIT for a system of `equations` whose analysis
@@ -166,7 +170,7 @@ inline constexpr double kCompactUmfpackWorkspace = 0.1;
 // a fraction of the estimate) below `compactFrom`, from there minus the compact start in units
 // (a negative value is a size).
 double umfpackInitialAllocation(Eigen::Index equations, double factorEstimateUnits,
-                                Eigen::Index compactFrom = kCompactUmfpackWorkspaceFrom);
+                                Eigen::Index compactFrom = kMemoryBoundSystemFrom);
 
 // Makes the BLAS library take its work buffer now, once per process, or throws OutOfMemory if
 // the address space left cannot hold it (OpenBLAS retries a failed allocation of that buffer

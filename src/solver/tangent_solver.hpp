@@ -34,6 +34,8 @@ namespace cc {
 // whole 57 k scaling run took 39.8 CPU s with GAMG (59 Newton iterations) against ~65 with
 // CHOLMOD/UMFPACK (56). Every paper and regression deck is far below it (at most ~20 k).
 inline constexpr Eigen::Index kIterativeBreakEven = 50000;
+static_assert(kIterativeBreakEven == kMemoryBoundSystemFrom,
+              "linear_solver.hpp: memory-bound sizes start where the direct solvers end");
 
 // Free equations from which `solver=auto` factorizes unsymmetric systems (friction) with MUMPS
 // (PETSc, one process) instead of UMFPACK. The whole scaling runs, one thread, the two solvers

@@ -388,7 +388,7 @@ std::unique_ptr<LinearSolver> makeUmfpackSolver(FillOrdering ordering) {
 }
 
 std::unique_ptr<LinearSolver> makeUmfpackSolver(FillOrdering ordering, double narrowUnitLimit) {
-  return makeUmfpackSolver(ordering, narrowUnitLimit, kCompactUmfpackWorkspaceFrom);
+  return makeUmfpackSolver(ordering, narrowUnitLimit, kMemoryBoundSystemFrom);
 }
 
 std::unique_ptr<LinearSolver> makeUmfpackSolver(FillOrdering ordering, double narrowUnitLimit,

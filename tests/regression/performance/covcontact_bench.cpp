@@ -28,6 +28,7 @@
 #include <chrono>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <string>
 
 #include "common/errors.hpp"
@@ -86,7 +87,8 @@ struct Options {
   std::string deck;
   std::string output;
   int threads = 0;
-  std::string solver;  // overrides the deck's `solve solver=` (the memory target's direct run)
+  // Overrides the deck's `solve solver=` (the memory target's direct run).
+  std::optional<cc::LinearSolverSpec::Method> solver;
   bool orderings = false;
   bool search = false;
 };
@@ -105,8 +107,7 @@ Options parseOptions(int argc, char** argv) {
     } else if (argument == "--threads" && hasValue) {
       options.threads = std::stoi(argv[++k]);
     } else if (argument == "--solver" && hasValue) {
-      options.solver = argv[++k];
-      (void)cc::deck::choiceValue(cc::deck::linearSolverMethods(), options.solver);
+      options.solver = cc::deck::choiceValue(cc::deck::linearSolverMethods(), argv[++k]);
     } else if (options.deck.empty() && !argument.starts_with("-")) {
       options.deck = argument;
     } else {
@@ -252,10 +253,7 @@ int run(const Options& options) {
   const auto start = Clock::now();
   if (options.threads > 0) omp_set_num_threads(options.threads);
   cc::ProblemSpec spec = cc::parseDeck(options.deck);
-  if (!options.solver.empty()) {
-    spec.linearSolver.method =
-        cc::deck::choiceValue(cc::deck::linearSolverMethods(), options.solver);
-  }
+  if (options.solver) spec.linearSolver.method = *options.solver;
   const std::string path = options.output.empty()
                                ? std::filesystem::path(options.deck).stem().string() + ".h5"
                                : options.output;

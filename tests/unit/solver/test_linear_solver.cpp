@@ -141,9 +141,9 @@ TEST(LinearSolver, UmfpackMovesTo64BitIndicesForGoodWhenAFactorOutgrowsThe32BitO
 // systems keep UMFPACK's default start. The solution is the same to round-off (at 232 k
 // equations the factor's size moved by 16 bytes: UMFPACK sizes some fronts by the memory it has).
 TEST(LinearSolver, UmfpackStartsALargeSystemsWorkspaceCompactAndSolvesTheSame) {
-  EXPECT_EQ(umfpackInitialAllocation(kCompactUmfpackWorkspaceFrom - 1, 1e8), 0.7);
-  EXPECT_EQ(umfpackInitialAllocation(kCompactUmfpackWorkspaceFrom, 1e8), -1e7);
-  EXPECT_EQ(umfpackInitialAllocation(kCompactUmfpackWorkspaceFrom, 0), 0.7);
+  EXPECT_EQ(umfpackInitialAllocation(kMemoryBoundSystemFrom - 1, 1e8), 0.7);
+  EXPECT_EQ(umfpackInitialAllocation(kMemoryBoundSystemFrom, 1e8), -1e7);
+  EXPECT_EQ(umfpackInitialAllocation(kMemoryBoundSystemFrom, 0), 0.7);
 
   SparseMatrix matrix = gridLaplacian(80, 0.0);
   for (int k = 0; k + 1 < matrix.rows(); ++k) matrix.coeffRef(k, k + 1) += 0.3 * (k % 3 == 0);
