@@ -118,10 +118,6 @@ class ContactPair : public Contribution {
   const std::string& augmentationMessage() const { return lastAugmentationMessage_; }
   // What the last augment() changed beyond the multipliers (a raised penalty), once; or empty.
   std::string takeAugmentationNote() { return std::exchange(augmentationNote_, {}); }
-  // Whether this step's multiplier updates have not halved over the last few: the load
-  // stepper then re-solves to the full criterion for the rest of the step (aug_inner).
-  bool augmentationSlow() const;
-  void restartAugmentationHistory() { accelerator_.reset(); }
   int augmentations() const { return augmentations_; }
 
   // Penalty continuation (solver/load_stepper.cpp): the larger of the pair's penalties over its

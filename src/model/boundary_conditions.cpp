@@ -74,7 +74,7 @@ void BoundaryConditions::constrain(int dof, Condition condition, const std::stri
   const bool bothFixed = it->second.function < 0 && condition.function < 0;
   if (bothFixed) return;  // fixing a dof twice (sets sharing an edge) is harmless
   // Judged once every condition is known (checkOverlaps); the first condition stays in force.
-  overlaps_.push_back({dof, it->second, condition, set});
+  overlaps_.push_back({dof, it->second, condition, set, {}, 0.0});
 }
 
 double BoundaryConditions::conditionValue(const Condition& condition, double t,

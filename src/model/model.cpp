@@ -72,7 +72,6 @@ NonlinearProblem::Augmentation Model::augment() {
   Augmentation result;
   for (auto& pair : contactPairs_) {
     const contact::ContactPair::Augmentation status = pair->augment();
-    result.slow = result.slow || pair->augmentationSlow();
     if (std::string note = pair->takeAugmentationNote(); !note.empty()) {
       result.note += (result.note.empty() ? "" : "\n") + note;
     }
@@ -87,10 +86,6 @@ NonlinearProblem::Augmentation Model::augment() {
     }
   }
   return result;
-}
-
-void Model::restartAugmentationHistory() {
-  for (auto& pair : contactPairs_) pair->restartAugmentationHistory();
 }
 
 double Model::stiffestPenaltyRatio() const {

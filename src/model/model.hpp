@@ -35,7 +35,6 @@ class Model : public NonlinearProblem {
   void assemble(const AssemblyState& state, Eigen::VectorXd& internalForce,
                 SystemMatrices* tangent) override;
   Augmentation augment() override;
-  void restartAugmentationHistory() override;
   double stiffestPenaltyRatio() const override;
   void scalePenalties(double factor) override;
   void commitStep() override;

@@ -65,17 +65,6 @@ std::string Model::distribute(ProcessGroup& group) {
                        "yet (its segmentation is not reproducible across process counts); run "
                        "on one process or use integration=gauss");
     }
-    // Anderson's combination of the Uzawa updates amplifies the round-off differences between
-    // process counts (1e-13 to 1e-6 over the updates of a stick/slip-switching step, then a
-    // decision flips): on the small block at eps_ref / 10, 1 and 2 processes took 5 and 17
-    // steps, while plain Uzawa (aug_depth=0) gives the serial run's results to 1e-8.
-    if (contact.enforcement == ContactSpec::Enforcement::Augmented &&
-        contact.accelerationDepth > 0) {
-      throw InputError(contact.where,
-                       "contact: enforcement=augmented with aug_depth > 0 is not available on "
-                       "several processes yet (its accelerated updates are not reproducible "
-                       "across process counts); run on one process or give aug_depth=0");
-    }
   }
   group_ = &group;
   std::vector<int> offsets, adjacency;

@@ -309,7 +309,6 @@ NewtonResult LoadStepper::augmentStep(NewtonSpec spec, const NewtonStep& step, N
     return newton_->solve(inexactResolve, loose, run.displacement);
   };
   bool lastSolveInexact = false;
-  bool inexactAllowed = spec.augmentedInnerTolerance > 0;  // until the updates slow down
   for (;;) {
     const NonlinearProblem::Augmentation augmentation = problem_.augment();
     if (!augmentation.note.empty()) observer_.note(augmentation.note);
@@ -320,13 +319,8 @@ NewtonResult LoadStepper::augmentStep(NewtonSpec spec, const NewtonStep& step, N
               augmentation.message};
     }
     // The rule met at an inexact iterate: the step is solved to the full criterion (the
-    // multipliers unchanged) and the rule checked again at that solution. Updates that slow
-    // down (ContactPair::augmentationSlow) get full re-solves for the rest of the step.
-    if (augmentation.slow && inexactAllowed) {
-      inexactAllowed = false;
-      problem_.restartAugmentationHistory();
-    }
-    const bool inexact = augmentation.status == Status::Updated && inexactAllowed;
+    // multipliers unchanged) and the rule checked again at that solution.
+    const bool inexact = augmentation.status == Status::Updated && spec.augmentedInnerTolerance > 0;
     lastSolveInexact = inexact;
     const Eigen::VectorXd start = run.displacement;
     NewtonResult next = resolveFrom(inexact);

@@ -39,13 +39,8 @@ class NonlinearProblem {
     Status status = Status::Converged;
     std::string message;
     std::string note;  // for the log: what changed beyond the multipliers (a raised penalty)
-    // A pair's updates have not halved over the last few: re-solve fully (aug_inner).
-    bool slow = false;
   };
   virtual Augmentation augment() { return {}; }
-  // Forgets the combination history of the multiplier updates (Anderson's), keeping the
-  // multipliers: its images came from inexact re-solves that are not continued.
-  virtual void restartAugmentationHistory() {}
   // Penalty continuation (load_stepper.cpp): the largest ratio of a contact pair's penalty to
   // its automatic penalty (0: no contact pair, or none with an automatic penalty known), and a
   // factor on every pair's penalties (1: as built).
