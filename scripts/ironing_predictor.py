@@ -72,15 +72,16 @@ def run(covcontact, work, name, text, limit):
                                 "--threads", "1"], stdout=subprocess.PIPE,
                                stderr=subprocess.STDOUT, text=True)
     try:
-        output, _ = process.communicate(timeout=limit)
+        process.communicate(timeout=limit)
     except subprocess.TimeoutExpired:
         process.send_signal(signal.SIGINT)
-        output, _ = process.communicate()
-    retries = re.search(r"(\d+) retried with line search", output)
-    cutbacks = re.search(r"(\d+) cut-backs in", output)
-    summary = ironing_summary.summarize(stem + ".h5") if os.path.exists(stem + ".h5") else {}
-    return {"retries": int(retries.group(1)) if retries else 0,
-            "cutbacks": int(cutbacks.group(1)) if cutbacks else None, **summary}
+        process.communicate()
+    return report(stem)
+
+
+def report(stem):
+    """The run's summary (ironing_summary.py), line-search retries and cut-backs from the file."""
+    return ironing_summary.summarize(stem + ".h5") if os.path.exists(stem + ".h5") else {}
 
 
 def cell(result):
@@ -99,6 +100,8 @@ def main():
     parser.add_argument("--only", default="", help="only the cases whose name contains this")
     parser.add_argument("--limit", type=float, default=200, help="seconds per run")
     parser.add_argument("--jobs", type=int, default=2)
+    parser.add_argument("--report-only", action="store_true",
+                        help="tabulate the results already in --work without running")
     args = parser.parse_args()
     os.makedirs(args.work, exist_ok=True)
     todo = [(name, text) for name, text in cases() if args.only in name]
@@ -106,8 +109,11 @@ def main():
     with concurrent.futures.ThreadPoolExecutor(args.jobs) as pool:
         for name, text in todo:
             for label, variant in (("default", text), ("extrapolate", with_predictor(text))):
-                jobs.append((name, label, pool.submit(run, args.covcontact, args.work,
-                                                      f"{name}_{label}", variant, args.limit)))
+                stem = f"{name}_{label}"
+                jobs.append((name, label, pool.submit(
+                    report, os.path.join(args.work, re.sub(r"[^A-Za-z0-9_]", "_", stem)))
+                    if args.report_only else
+                    pool.submit(run, args.covcontact, args.work, stem, variant, args.limit)))
     results = {(name, label): job.result() for name, label, job in jobs}
     print("| deck | default: developed | extrapolate: developed | extrapolate: its "
           "(line-search retries / cut-backs), mean Fz |")
@@ -116,7 +122,7 @@ def main():
         before, after = results[(name, "default")], results[(name, "extrapolate")]
         fz = after.get("Fz_mean")
         print(f"| `{name}` | {cell(before)} | {cell(after)} | {after.get('iterations', 0)} "
-              f"({after['retries']} / {after['cutbacks']})"
+              f"({after.get('line_search_retries', 0)} / {after.get('cutbacks', 0)})"
               + (f", {abs(fz):.2f}" if fz is not None else "") + " |")
 
 

@@ -18,7 +18,9 @@ def summarize(path):
     rows = list(csv.DictReader(open(stem + "_reactions.csv")))
     with h5py.File(path, "r") as f:
         summary = dict(f["summary"].attrs) if "summary" in f else {}
-        cutbacks = len(f["cutbacks"]) if "cutbacks" in f else 0
+        # The file's "cutbacks" table records every retried attempt, line-search retries at the
+        # same step size included; the summary counts the step-size reductions alone.
+        attempts = len(f["cutbacks"]) if "cutbacks" in f else 0
     t = [float(r["time"]) for r in rows]
     its = [int(r["iterations"]) for r in rows]
     developed = [k for k, tk in enumerate(t) if tk > 0.4 + 1e-9]
@@ -34,7 +36,8 @@ def summarize(path):
         "steps": len(rows),
         "final_t": t[-1] if t else 0,
         "iterations": sum(its),
-        "cutbacks": cutbacks,
+        "cutbacks": int(summary.get("cutbacks", attempts)),
+        "line_search_retries": int(summary.get("line_search_retries", 0)),
     }
     if isinstance(out["outcome"], bytes):
         out["outcome"] = out["outcome"].decode()
