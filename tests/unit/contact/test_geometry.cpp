@@ -184,6 +184,38 @@ TEST(Projection, ReportsParameterOutsideSegment) {
   EXPECT_GT(p.xi[0], 1.0);
 }
 
+// A thin segment far from the origin: 5.6 long, 0.094 wide (the Cattaneo-Mindlin cylinder deck's
+// master strips, one element thick) and shifted by 1000. The parameter across the strip is known
+// to eps |r| / 0.047 ~ 5e-12 only, above the projection's 1e-13 tolerance: Newton's steps stalled
+// there and the projection reported a breakdown (the deck's run stopped at t = 1.4). On this flat,
+// slightly skewed strip the closest point solves a 2 x 2 linear system, the independent reference.
+TEST(Projection, ConvergesToTheRoundoffOfTheCoordinatesOnAThinSegmentFarAway) {
+  const Vector3d shift(1000.0, -700.0, 400.0);
+  const Vector3d corner = shift, along(5.6, 0.0, 0.3), across(0.01, 0.094, 0.0);
+  NodeMatrix<double> nodes(3, 4);
+  nodes.col(0) = corner;
+  nodes.col(1) = corner + along;
+  nodes.col(2) = corner + along + across;
+  nodes.col(3) = corner + across;
+  int projections = 0;
+  for (double a : {0.1, 0.37, 0.5, 0.83}) {
+    for (double b : {0.05, 0.5, 0.71, 0.98}) {
+      // A point above (a, b) of the strip, off its plane by 0.2 along the normal.
+      const Vector3d normal = along.cross(across).normalized();
+      const Vector3d point = corner + a * along + b * across + 0.2 * normal;
+      const ProjectionResult p =
+          closestPointProjection(shape::SurfaceType::Quad4, nodes, point, Vector2d::Zero());
+      EXPECT_TRUE(p.converged) << a << " " << b;
+      EXPECT_FALSE(p.brokeDown) << a << " " << b;
+      // xi = 2 (a, b) - 1 exactly; known to ~1e-11 across the strip here.
+      EXPECT_NEAR(p.xi[0], 2 * a - 1, 1e-10);
+      EXPECT_NEAR(p.xi[1], 2 * b - 1, 1e-10);
+      ++projections;
+    }
+  }
+  EXPECT_EQ(projections, 16);
+}
+
 // d xi / d x of the differentiable projection against central differences of re-projections.
 TEST(Projection, DifferentiableProjectionMatchesFiniteDifferences) {
   using AD = Eigen::AutoDiffScalar<Eigen::VectorXd>;

@@ -373,7 +373,7 @@ TEST(NagataPatch, ProjectionOnIroningDieSegmentAfterElasticRotation) {
   // The closest point of the whole patch: no point of a 401 x 401 sampling of [-1, 1]^2 is
   // closer, and the nearest sample lies next to the projection.
   double nearest = std::numeric_limits<double>::infinity();
-  Vector2d nearestXi;
+  Vector2d nearestXi = Vector2d::Zero();
   for (int a = 0; a <= 400; ++a) {
     for (int b = 0; b <= 400; ++b) {
       const Vector2d xi(-1 + a / 200.0, -1 + b / 200.0);
