@@ -286,12 +286,13 @@ std::string costLine(const Model& model, const SolverStatistics& work, int itera
       "\"matrix_entries\": {:.6g}, \"solution\": {:.6g}}}, \"linear_phases_rank0\": "
       "{{\"analyses\": {}, \"analysis_s\": {:.6g}, \"factorizations\": {}, "
       "\"factorization_s\": {:.6g}, \"reused_preconditioners\": {}, \"solves\": {}, "
-      "\"solve_s\": {:.6g}, \"krylov_iterations\": {}}}}}\n",
+      "\"solve_s\": {:.6g}, \"krylov_iterations\": {}, \"refinement_steps\": {}}}}}\n",
       processes, model.dofMap().numFree(), model.elementCount(), timings.assemblies, iterations,
       wallSeconds, column(0), column(1), column(2), column(3), column(4),
       group.bytesMoved() * perIteration, total(5) * perIteration, total(6) * perIteration,
       linear.analyses, linear.analysisSeconds, linear.factorizations, linear.factorizationSeconds,
-      linear.reusedPreconditioners, linear.solves, linear.solveSeconds, linear.krylovIterations);
+      linear.reusedPreconditioners, linear.solves, linear.solveSeconds, linear.krylovIterations,
+      linear.refinementSteps);
 }
 
 // Rank 0's value on every process: what the processes write into the shared file must be the

@@ -44,6 +44,8 @@ struct LinearSolverStatistics {
   // UMFPACK: times a factorization grew its workspace (from the compact start of a large
   // system, umfpackInitialAllocation).
   int workspaceGrowths = 0;
+  // UMFPACK: refined solves whose factor alone left a residual that called for a refinement step.
+  int refinementSteps = 0;
   // Several processes: bytes this process sent for matrix entries of rows another process
   // owns, and received of the solution (the direct solver's own traffic is not counted).
   double matrixBytesSent = 0;

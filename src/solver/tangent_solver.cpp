@@ -29,6 +29,7 @@ LinearSolverStatistics& LinearSolverStatistics::operator+=(const LinearSolverSta
   reusedPreconditioners += other.reusedPreconditioners;
   reusedOrderings += other.reusedOrderings;
   workspaceGrowths += other.workspaceGrowths;
+  refinementSteps += other.refinementSteps;
   matrixBytesSent += other.matrixBytesSent;
   solutionBytesReceived += other.solutionBytesReceived;
   return *this;
