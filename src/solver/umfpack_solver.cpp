@@ -187,7 +187,7 @@ class UmfpackFactor {
   // factor alone reaches 1e-15 to 1e-14 on the tangents measured (die model: 1.8e-14 against
   // 1.2e-14 refined), where refinement gains nothing; no solve of the die deck or of example 6.1
   // needed a step. The seventh session's run without any refinement lost a contact projection
-  // in a Cattaneo-Mindlin verification: that was the projection's own round-off stall
+  // in a Cattaneo-Mindlin verification: most likely the projection's own round-off stall
   // (projection.cpp), but the check costs only a product with K.
   static constexpr double kRefineAbove = 1e-13;
 
