@@ -78,8 +78,7 @@ class UmfpackFactor {
       : unitLimit_(unitLimit), compactFrom_(compactFrom), statistics_(statistics) {
     Api::defaults(control_);
     control_[UMFPACK_ORDERING] = umfpackOrdering(ordering);
-    std::copy(std::begin(control_), std::end(control_), std::begin(unrefinedControl_));
-    unrefinedControl_[UMFPACK_IRSTEP] = 0;
+    control_[UMFPACK_IRSTEP] = 0;  // solve() refines itself, where needed (kRefineAbove)
   }
   ~UmfpackFactor() { release(); }
   UmfpackFactor(const UmfpackFactor&) = delete;
@@ -195,7 +194,7 @@ class UmfpackFactor {
     Eigen::VectorXd solution(rhs.size());
     const Index status =
         Api::solve(UMFPACK_A, columnStarts(*matrix_), rowIndices(*matrix_), matrix_->valuePtr(),
-                   solution.data(), rhs.data(), numeric_, unrefinedControl_, info_);
+                   solution.data(), rhs.data(), numeric_, control_, info_);
     if (status != UMFPACK_OK) {
       throw std::runtime_error(fmt::format("UMFPACK solve failed (status {})", status));
     }
@@ -308,7 +307,6 @@ class UmfpackFactor {
   Eigen::Index compactFrom_;
   LinearSolverStatistics& statistics_;
   double control_[UMFPACK_CONTROL];
-  double unrefinedControl_[UMFPACK_CONTROL];  // control_ with UMFPACK_IRSTEP 0
   double info_[UMFPACK_INFO];
   void* symbolic_ = nullptr;
   void* numeric_ = nullptr;

@@ -19,6 +19,9 @@ import sys
 
 import h5py
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "support"))
+from cpu_flags import cpu_flags  # noqa: E402
+
 CONTACT = "contact sts master=block_bottom slave=base_top mu=0.3"
 NEWTON = "newton converge=residual residual=1e-10"
 OPTIONS = "enforcement=augmented eps_scale=0.1 aug_grow=no"
@@ -33,15 +36,7 @@ def fail(message):
 
 def kernel_sets():
     """OpenBLAS core types whose instructions this CPU has (a wrong one would be SIGILL)."""
-    flags = set()
-    try:
-        with open("/proc/cpuinfo") as f:
-            for line in f:
-                if line.startswith("flags"):
-                    flags = set(line.split(":", 1)[1].split())
-                    break
-    except OSError:
-        pass
+    flags = cpu_flags()
     sets = ["Prescott"] if "sse3" in flags or "pni" in flags else ["default"]
     if "avx" in flags:
         sets.append("Sandybridge")

@@ -18,7 +18,9 @@ import sys
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "support"))
 import stress_script  # noqa: E402
+from cpu_flags import cpu_flags  # noqa: E402
 
 WATCH_SECONDS = 4.0  # the die deck's press takes longer: set-up, factorizations and solves seen
 
@@ -103,13 +105,7 @@ def watch_run(args, threads, extra_environment):
 def expected_openblas_core():
     """The OpenBLAS core type for this CPU by its flags in /proc/cpuinfo (the program asks the
     CPU itself): AVX2 + FMA -> Haswell (with or without AVX-512), else none."""
-    flags = set()
-    with open("/proc/cpuinfo") as f:
-        for line in f:
-            if line.startswith("flags"):
-                flags = set(line.split(":", 1)[1].split())
-                break
-    if {"avx2", "fma"} <= flags:
+    if {"avx2", "fma"} <= cpu_flags():
         return "Haswell"
     return None
 
