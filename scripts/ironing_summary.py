@@ -5,7 +5,8 @@ the die force level and its step-to-step jitter, from the reactions CSV and the 
 usage: ironing_summary.py RESULTS.h5 [...]   (the CSV beside each, STEM_reactions.csv)
 
 Developed sliding: the steps with t > 0.4 (the die has slid at least 1 of 4; the press ends at
-t = 0.2). Force: the total force of the contact pair `die`, or -slab_bottom reaction.
+t = 0.2). Force: the total force of the first contact pair in the CSV (the die or the ball,
+issue 14's decks), or the slab_bottom reaction, signed so that the press is +z.
 """
 import csv
 import sys
@@ -24,12 +25,13 @@ def summarize(path):
     t = [float(r["time"]) for r in rows]
     its = [int(r["iterations"]) for r in rows]
     developed = [k for k, tk in enumerate(t) if tk > 0.4 + 1e-9]
-    if "contact_die_Fz" in rows[0]:
-        fz = [-float(r["contact_die_Fz"]) for r in rows]
-        fx = [-float(r["contact_die_Fx"]) for r in rows]
-    else:
-        fz = [float(r["slab_bottom_Fz"]) for r in rows]
-        fx = [float(r["slab_bottom_Fx"]) for r in rows]
+    pairs = [c[:-3] for c in (rows[0] if rows else {}) if c.startswith("contact_") and
+             c.endswith("_Fz")]
+    stem_of_force = pairs[0] if pairs else "slab_bottom"
+    fz = [float(r[stem_of_force + "_Fz"]) for r in rows]
+    fx = [float(r[stem_of_force + "_Fx"]) for r in rows]
+    if sum(fz) < 0:  # the force on the other body of the pair: the press pushes down (+z)
+        fz, fx = [-f for f in fz], [-f for f in fx]
     out = {
         "file": path,
         "outcome": summary.get("outcome", b"?"),

@@ -1,0 +1,66 @@
+#!/usr/bin/python3
+"""The ball-on-block decks of issue 14 (`input/stress/ball/`): Newton iterations per step in
+developed sliding (t > 0.4), line-search retries, cut-backs, the final time, the mean contact
+force and Fx/Fz of each run, as the Markdown table of docs/verification/sliding.md ("Twentieth
+session"). One command from a built checkout:
+
+    /usr/bin/python3 scripts/ball_cases.py [--only SUBSTRING] [--limit SECONDS] [--jobs N]
+
+Each run gets --threads 1 and is interrupted (SIGINT: its converged steps are kept) after
+--limit seconds (default 300). The decks carry their own solution control
+(`predictor=extrapolate`); results go to --work (default /tmp/ball_cases), nothing into the
+source tree. About 15 minutes on 2 cores for everything (--jobs 2).
+"""
+import argparse
+import concurrent.futures
+import os
+import re
+import sys
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(ROOT, "scripts"))
+import ironing_predictor  # noqa: E402
+
+DECKS = os.path.join(ROOT, "input", "stress", "ball")
+
+
+def absolute_paths(text):
+    """The deck's include and mesh with absolute paths, so that it runs from --work."""
+    text = re.sub(r'^include "([^"/]+)"', lambda m: f'include "{os.path.join(DECKS, m.group(1))}"',
+                  text, flags=re.M)
+    return text.replace('"../../../meshes/', '"' + os.path.join(ROOT, "meshes") + "/")
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--covcontact", default=os.path.join(ROOT, "build", "src", "app",
+                                                             "covcontact"))
+    parser.add_argument("--work", default="/tmp/ball_cases")
+    parser.add_argument("--only", default="", help="only the decks whose name contains this")
+    parser.add_argument("--limit", type=float, default=300, help="seconds per run")
+    parser.add_argument("--jobs", type=int, default=2)
+    parser.add_argument("--report-only", action="store_true",
+                        help="tabulate the results already in --work without running")
+    args = parser.parse_args()
+    os.makedirs(args.work, exist_ok=True)
+    names = sorted(d[:-5] for d in os.listdir(DECKS) if d.endswith(".deck") and args.only in d)
+    with concurrent.futures.ThreadPoolExecutor(args.jobs) as pool:
+        jobs = {name: pool.submit(ironing_predictor.report, os.path.join(args.work, name))
+                if args.report_only else
+                pool.submit(ironing_predictor.run, args.covcontact, args.work, name,
+                            absolute_paths(open(os.path.join(DECKS, name + ".deck")).read()),
+                            args.limit)
+                for name in names}
+    print("| deck | developed | its (line-search retries / cut-backs) | mean Fz | mean Fx/Fz |")
+    print("|---|---|---|---|---|")
+    for name in names:
+        result = jobs[name].result()
+        fz, ratio = result.get("Fz_mean"), result.get("Fx/Fz_mean")
+        print(f"| `{name}` | {ironing_predictor.cell(result)} | {result.get('iterations', 0)} "
+              f"({result.get('line_search_retries', 0)} / {result.get('cutbacks', 0)}) | "
+              + (f"{fz:.4g}" if fz is not None else "-") + " | "
+              + (f"{abs(ratio):.3f}" if ratio is not None else "-") + " |")
+
+
+if __name__ == "__main__":
+    main()
