@@ -240,7 +240,7 @@ SegmentProjection MasterSurface::walk(int start, const Eigen::Vector2d& guess,
     const ProjectionResult p = projectOn(segment, point, initial, coordinates);
     if (!p.converged) {
       SegmentProjection notFound;
-      notFound.projectionBrokeDown = p.brokeDown;
+      notFound.projectionBrokeDown = p.brokeDown && !apartFrom(segment, point, coordinates);
       return notFound;
     }
     visitedXi.push_back(p.xi);
@@ -276,6 +276,23 @@ SegmentProjection MasterSurface::walk(int start, const Eigen::Vector2d& guess,
     initial.setZero();
   }
   return {};
+}
+
+// Whether `point` is beyond the reach of `segment` (distanceBound) on the open side of its
+// centre's tangent plane, where it cannot touch the segment whatever its projection does. The
+// Newton projection of such a point need not converge: a block point beside a ball's cap, 1.6
+// away from a segment 0.3 across, crept through the segment's bilinear extension by 1e-3 in xi
+// per iteration (the Gauss-Newton fallback on its saddle) and stopped a run on "projection
+// broke down" (ball_sts_soft_mu03.deck, t = 0.83).
+bool MasterSurface::apartFrom(int segment, const Eigen::Vector3d& point,
+                              const Eigen::Matrix3Xd& coordinates) const {
+  if (distanceBound(segment, point, coordinates) <= 0) return false;
+  Eigen::Vector3d centre;
+  std::array<Eigen::Vector3d, 2> tangents;
+  interpolateSegment(type_, segmentNodes(segment, coordinates),
+                     static_cast<const NodalNormals*>(nullptr), 0.0, 0.0, centre, tangents,
+                     nullptr);
+  return (point - centre).dot(unitNormal(tangents)) > 0;
 }
 
 // A lower bound of the distance from `point` to any projection search() can accept on

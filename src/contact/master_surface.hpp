@@ -83,6 +83,9 @@ class MasterSurface {
   // A lower bound of the distance from `point` to an accepted projection on `segment`.
   double distanceBound(int segment, const Eigen::Vector3d& point,
                        const Eigen::Matrix3Xd& coordinates) const;
+  // Whether `point` lies beyond distanceBound of `segment` on its open side (no contact).
+  bool apartFrom(int segment, const Eigen::Vector3d& point,
+                 const Eigen::Matrix3Xd& coordinates) const;
   // Distance from `point` to the segment's point at xi.
   double distanceTo(int segment, const Eigen::Vector2d& xi, const Eigen::Vector3d& point,
                     const Eigen::Matrix3Xd& coordinates) const;

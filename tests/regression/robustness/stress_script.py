@@ -1,10 +1,11 @@
 """Shared by the issue-14 scripts of this folder (check_newton_diagnostics.py,
 check_quadratic_tail.py, check_ironing_edge.py, check_step_start_sliding.py,
-check_nts_patch_edges.py): their command line (--covcontact, --decks input/stress, --scratch),
-the exact-tangent copy of the large-slip deck they run, the ironing decks with absolute paths,
-and a run of an ironing deck's first steps."""
+check_nts_patch_edges.py, check_ball_cap_edge.py, ...): their command line (--covcontact,
+--decks input/stress, --scratch), the exact-tangent copy of the large-slip deck they run, the ironing and ball decks with
+absolute paths, and a run of such a deck's first steps."""
 import argparse
 import os
+import re
 import subprocess
 import sys
 
@@ -30,21 +31,23 @@ def exact_large_slip_deck(args):
     return deck
 
 
-def ironing_deck_text(args, name):
-    """The text of input/stress/ironing/NAME with its include and mesh paths made absolute, so
-    that a variant of it can be written to the scratch folder."""
-    here = os.path.abspath(os.path.join(args.decks, "ironing"))
+def ironing_deck_text(args, name, folder="ironing"):
+    """The text of input/stress/FOLDER/NAME (the ironing decks, or the ball decks with
+    folder="ball") with its include and mesh paths made absolute, so that a variant of it can be
+    written to the scratch folder."""
+    here = os.path.abspath(os.path.join(args.decks, folder))
     source = open(os.path.join(here, name)).read()
-    mesh = os.path.abspath(os.path.join(args.decks, "../../meshes/ironing.geo"))
-    return (source.replace('"ironing_model.inc"', '"' + os.path.join(here, "ironing_model.inc") + '"')
-            .replace('"../../../meshes/ironing.geo"', '"' + mesh + '"'))
+    meshes = os.path.abspath(os.path.join(args.decks, "../../meshes"))
+    source = re.sub(r'^include "([^"/]+)"', lambda m: f'include "{os.path.join(here, m.group(1))}"',
+                    source, flags=re.M)
+    return source.replace('"../../../meshes/', '"' + meshes + "/")
 
 
-def run_ironing_steps(args, name, steps, must_contain=()):
-    """Runs input/stress/ironing/NAME (100 steps of dt = 0.01) cut to its first `steps` steps,
+def run_ironing_steps(args, name, steps, must_contain=(), folder="ironing"):
+    """Runs input/stress/FOLDER/NAME (100 steps of dt = 0.01) cut to its first `steps` steps,
     one thread, with --newton-log, in the scratch folder; checks that the deck says each of
     `must_contain`, exits with the run's output if it fails, and returns the CompletedProcess."""
-    source = ironing_deck_text(args, name)
+    source = ironing_deck_text(args, name, folder)
     for text in ("steps 100 dt=0.01",) + tuple(must_contain):
         assert text in source, f"{name} no longer says {text!r}"
     stem = f"{os.path.splitext(name)[0]}_{steps}"

@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "contact/master_surface.hpp"
+#include "contact/projection.hpp"
 
 namespace cc::contact {
 namespace {
@@ -122,6 +123,39 @@ TEST(MasterSurfaceSearch, FindsTheClosestPointOfTheWholeSurfaceBetweenTwoThinShe
     ++checked;
   }
   EXPECT_EQ(checked, 60);
+}
+
+// A slave point beside a ball's cap, 1.55 from a cap segment 0.3 across (recorded from
+// input/stress/ball/ball_sts_soft_mu03.deck at t = 0.83): Newton's projection creeps through
+// the segment's bilinear extension without converging. On the segment's open side that is no
+// breakdown (the point cannot touch it), and the run went on; with the segment turned over
+// (the same surface, its normal reversed) the point would be penetrating, and the breakdown
+// still counts, so that the step is cut back rather than the point dropped.
+TEST(MasterSurfaceWalk, AFarPointOnTheOpenSideIsNotABreakdownOnTheClosedSideItIs) {
+  Eigen::Matrix3Xd coordinates(3, 4);
+  coordinates << 4.2475217898546056, 4.3958907847193958, 4.6196993752003879, 4.4733623986659232,
+      1.8935127140816355, 2.107693722823158, 2.2346680768428753, 2.0200067003682349,
+      3.6602586783742259, 3.7833077843924094, 3.709992790073978, 3.548010242526507;
+  const Vector3d point(3.4762717837153807, 3.0743510220062409, 2.9934799035519815);
+  const Eigen::Vector2d guess(-0.2802155313611025, 0.048815913135568351);
+  FaceSet faces;
+  faces.type = CellType::Quad4;
+  faces.connectivity.resize(1, 4);
+
+  faces.connectivity.row(0) << 0, 1, 2, 3;  // normal away from the ball's centre: open side
+  const ProjectionResult creep =
+      closestPointProjection(shape::SurfaceType::Quad4, coordinates, point, guess);
+  ASSERT_FALSE(creep.converged);  // the premise: the iteration does not settle
+  ASSERT_TRUE(creep.brokeDown);
+  const SegmentProjection open = MasterSurface(faces).walk(0, guess, point, coordinates);
+  EXPECT_FALSE(open.found());
+  EXPECT_FALSE(open.projectionBrokeDown);
+
+  faces.connectivity.row(0) << 0, 3, 2, 1;  // turned over: the point is on the closed side
+  const Eigen::Vector2d swapped(guess[1], guess[0]);
+  const SegmentProjection closed = MasterSurface(faces).walk(0, swapped, point, coordinates);
+  EXPECT_FALSE(closed.found());
+  EXPECT_TRUE(closed.projectionBrokeDown);
 }
 
 }  // namespace
