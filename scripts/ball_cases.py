@@ -9,7 +9,7 @@ session"). One command from a built checkout:
 Each run gets --threads 1 and is interrupted (SIGINT: its converged steps are kept) after
 --limit seconds (default 300). The decks carry their own solution control
 (`predictor=extrapolate`); results go to --work (default /tmp/ball_cases), nothing into the
-source tree. About 15 minutes on 2 cores for everything (--jobs 2).
+source tree. About 6 minutes on 2 cores for everything (--jobs 2).
 """
 import argparse
 import concurrent.futures
