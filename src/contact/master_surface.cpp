@@ -280,7 +280,7 @@ SegmentProjection MasterSurface::walk(int start, const Eigen::Vector2d& guess,
 
 // Whether `point` is beyond the reach of `segment` (distanceBound) on the open side of its
 // centre's tangent plane, where it cannot touch the segment whatever its projection does. The
-// Newton projection of such a point need not converge: a block point beside a ball's cap, 1.6
+// Newton projection of such a point need not converge: a block point beside a ball's cap, 1.55
 // away from a segment 0.3 across, crept through the segment's bilinear extension by 1e-3 in xi
 // per iteration (the Gauss-Newton fallback on its saddle) and stopped a run on "projection
 // broke down" (ball_sts_soft_mu03.deck, t = 0.83).
