@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """The ball-on-block decks of issue 14 (`input/stress/ball/`): Newton iterations per step in
 developed sliding (t > 0.4), line-search retries, cut-backs, the final time, the mean contact
-force and Fx/Fz of each run, as the Markdown table of docs/verification/sliding.md ("Twentieth
+force and Fx/Fz of each run (meaningless for the *_arc decks, whose path turns), as the Markdown table of docs/verification/sliding.md ("Twentieth
 session"). One command from a built checkout:
 
     /usr/bin/python3 scripts/ball_cases.py [--only SUBSTRING] [--limit SECONDS] [--jobs N]
@@ -11,7 +11,6 @@ Each run gets --threads 1 and is interrupted (SIGINT: its converged steps are ke
 (`predictor=extrapolate`); results go to --work (default /tmp/ball_cases), nothing into the
 source tree. About 6 minutes on 2 cores for everything (--jobs 2).
 """
-import argparse
 import concurrent.futures
 import os
 import re
@@ -32,16 +31,7 @@ def absolute_paths(text):
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--covcontact", default=os.path.join(ROOT, "build", "src", "app",
-                                                             "covcontact"))
-    parser.add_argument("--work", default="/tmp/ball_cases")
-    parser.add_argument("--only", default="", help="only the decks whose name contains this")
-    parser.add_argument("--limit", type=float, default=300, help="seconds per run")
-    parser.add_argument("--jobs", type=int, default=2)
-    parser.add_argument("--report-only", action="store_true",
-                        help="tabulate the results already in --work without running")
-    args = parser.parse_args()
+    args = ironing_predictor.parse_batch_args(__doc__, "/tmp/ball_cases", 300)
     os.makedirs(args.work, exist_ok=True)
     names = sorted(d[:-5] for d in os.listdir(DECKS) if d.endswith(".deck") and args.only in d)
     with concurrent.futures.ThreadPoolExecutor(args.jobs) as pool:

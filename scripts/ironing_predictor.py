@@ -92,17 +92,22 @@ def cell(result):
     return text
 
 
-def main():
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+def parse_batch_args(doc, work, limit):
+    """The command line of a batch of decks (this script, ball_cases.py)."""
+    parser = argparse.ArgumentParser(description=doc.splitlines()[0])
     parser.add_argument("--covcontact", default=os.path.join(ROOT, "build", "src", "app",
                                                              "covcontact"))
-    parser.add_argument("--work", default="/tmp/ironing_predictor")
+    parser.add_argument("--work", default=work)
     parser.add_argument("--only", default="", help="only the cases whose name contains this")
-    parser.add_argument("--limit", type=float, default=200, help="seconds per run")
+    parser.add_argument("--limit", type=float, default=limit, help="seconds per run")
     parser.add_argument("--jobs", type=int, default=2)
     parser.add_argument("--report-only", action="store_true",
                         help="tabulate the results already in --work without running")
-    args = parser.parse_args()
+    return parser.parse_args()
+
+
+def main():
+    args = parse_batch_args(__doc__, "/tmp/ironing_predictor", 200)
     os.makedirs(args.work, exist_ok=True)
     todo = [(name, text) for name, text in cases() if args.only in name]
     jobs = []
