@@ -1,8 +1,9 @@
 #!/usr/bin/python3
 """The ball-on-block decks of issue 14 (`input/stress/ball/`): Newton iterations per step in
 developed sliding (t > 0.4), line-search retries, cut-backs, the final time, the mean contact
-force and Fx/Fz of each run (meaningless for the *_arc decks, whose path turns), as the Markdown table of docs/verification/sliding.md ("Twentieth
-session"). One command from a built checkout:
+force and Fx/Fz of each run (meaningless for the *_arc decks, whose path turns), as the
+Markdown table of docs/verification/sliding.md ("Twentieth session"). One command from a built
+checkout:
 
     /usr/bin/python3 scripts/ball_cases.py [--only SUBSTRING] [--limit SECONDS] [--jobs N]
 
