@@ -7,8 +7,9 @@
 // contact face), inner radius R - t. The cap is one face of a "cube sphere": the directions
 // (X, Y, -1) with |X| <= T and 0 <= Y <= T (whole: |Y| <= T), T = tan(angle), projected on the
 // two spheres, so its edges are great circles and its sides plane; nb elements along x, nb / 2
-// across (whole: nb), nr through the wall. Its lowest point touches the block's top (gap = 0), and that point is never a
-// geometric point of the block, so the built-in kernel cannot glue the bodies.
+// across (whole: nb), nr through the wall. Its lowest point touches the block's top (gap = 0),
+// and that point is never a geometric point of the block, so the built-in kernel cannot glue
+// the bodies.
 //
 // Groups: volumes block, ball; surfaces block_top (z = H), block_bottom (z = 0), block_ymin
 // (y = 0; whole: y = -W), ball_bottom (the outer spherical face: contact), ball_top (the inner

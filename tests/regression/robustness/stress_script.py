@@ -1,8 +1,8 @@
 """Shared by the issue-14 scripts of this folder (check_newton_diagnostics.py,
 check_quadratic_tail.py, check_ironing_edge.py, check_step_start_sliding.py,
 check_nts_patch_edges.py, check_ball_cap_edge.py, ...): their command line (--covcontact,
---decks input/stress, --scratch), the exact-tangent copy of the large-slip deck they run, the ironing and ball decks with
-absolute paths, and a run of such a deck's first steps."""
+--decks input/stress, --scratch), the exact-tangent copy of the large-slip deck they run, the
+ironing and ball decks with absolute paths, and a run of such a deck's first steps."""
 import argparse
 import os
 import re
