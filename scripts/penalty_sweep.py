@@ -31,7 +31,8 @@ import sys
 import time
 
 import h5py
-import numpy as np
+
+from results_file import set_reaction
 
 SOURCE = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
@@ -82,12 +83,6 @@ def with_newton_options(text, options):
                               flags=re.MULTILINE)
     assert count == 1, "no solve block to add newton options to"
     return text
-
-
-def set_reaction(step, name):
-    names = [n.decode() if isinstance(n, bytes) else n
-             for n in step["set_reactions"].attrs["names"]]
-    return step["set_reactions"][names.index(name)]
 
 
 def measure(path, set_name, pair):

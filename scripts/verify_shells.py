@@ -20,9 +20,10 @@ import time
 from dataclasses import dataclass, field
 
 import h5py
-import numpy as np
 from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
+
+import results_file
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 DECK_DIR = os.path.join(ROOT, "input", "verification", "shells")
@@ -312,9 +313,7 @@ def mean_displacement(h5, node_set, component, step=None):
 
 
 def set_reaction(h5, node_set, component, step):
-    group = h5[f"steps/{step}/set_reactions"]
-    names = list(group.attrs["names"])
-    return float(group[:][names.index(node_set), component])
+    return float(results_file.set_reaction(h5[f"steps/{step}"], node_set)[component])
 
 
 def last_step(h5):

@@ -13,6 +13,8 @@ import numpy as np
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
+from results_file import set_reaction  # noqa: E402
+
 from .common import iterations_per_step, markdown_table, residual_variant  # noqa: E402
 
 PAIR = "interface"
@@ -80,8 +82,7 @@ def read_states(results: Path, increment: float) -> list:
             step = f["steps"][name]
             time = float(step.attrs["time"])
             applied = increment * max(time - PRESS_STEPS, 0.0)
-            names = [str(n) for n in step["set_reactions"].attrs["names"]]
-            top = step["set_reactions"][names.index("block_top")]
+            top = set_reaction(step, "block_top")
             pair = step["contact"][PAIR]
             x, fx, fy = nodal_forces_along_x(coordinates, pair)
             state = pair["state"][...]

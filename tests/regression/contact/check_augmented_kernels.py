@@ -22,6 +22,10 @@ import h5py
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "support"))
 from cpu_flags import cpu_flags  # noqa: E402
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..",
+                                "scripts"))
+from results_file import set_reaction  # noqa: E402
+
 CONTACT = "contact sts master=block_bottom slave=base_top mu=0.3"
 NEWTON = "newton converge=residual residual=1e-10"
 OPTIONS = "enforcement=augmented eps_scale=0.1 aug_grow=no"
@@ -45,12 +49,6 @@ def kernel_sets():
     if {"avx512f", "avx512bw", "avx512vl"} <= flags:
         sets.append("SkylakeX")
     return sets
-
-
-def set_reaction(step, name):
-    names = [n.decode() if isinstance(n, bytes) else n
-             for n in step["set_reactions"].attrs["names"]]
-    return step["set_reactions"][names.index(name)]
 
 
 def run(covcontact, deck, scratch, kernels):

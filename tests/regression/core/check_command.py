@@ -11,12 +11,15 @@ Usage: check_command.py --covcontact BIN --decks input/verification/core --scrat
 """
 import os
 import re
+import sys
 
 import h5py
 
 from core_command import check, parse_arguments, run
 
 SOURCE_DIR = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", ".."))
+sys.path.insert(0, os.path.join(SOURCE_DIR, "scripts"))
+import results_file  # noqa: E402
 ERRORS_HEADER = os.path.join(SOURCE_DIR, "src", "common", "errors.hpp")
 EXIT_OK, EXIT_USAGE, EXIT_INPUT, EXIT_MISMATCH, EXIT_IO = 0, 1, 2, 5, 6
 STEPS = 4
@@ -87,9 +90,8 @@ def set_reaction(path, step, index):
     """Value of set_reactions at `set.component` in a step of a results file."""
     set_name, component = index.rsplit(".", 1)
     with h5py.File(path, "r") as h5:
-        dataset = h5["steps"]["%06d" % step]["set_reactions"]
-        row = [str(name) for name in dataset.attrs["names"]].index(set_name)
-        return float(dataset[row, COMPONENTS.index(component)])
+        return float(results_file.set_reaction(h5["steps"]["%06d" % step],
+                                               set_name)[COMPONENTS.index(component)])
 
 
 def check_compare(covcontact, decks, scratch):
