@@ -14,7 +14,6 @@ source tree. About 6 minutes on 2 cores for everything (--jobs 2).
 """
 import concurrent.futures
 import os
-import re
 import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -22,13 +21,6 @@ sys.path.insert(0, os.path.join(ROOT, "scripts"))
 import ironing_predictor  # noqa: E402
 
 DECKS = os.path.join(ROOT, "input", "stress", "ball")
-
-
-def absolute_paths(text):
-    """The deck's include and mesh with absolute paths, so that it runs from --work."""
-    text = re.sub(r'^include "([^"/]+)"', lambda m: f'include "{os.path.join(DECKS, m.group(1))}"',
-                  text, flags=re.M)
-    return text.replace('"../../../meshes/', '"' + os.path.join(ROOT, "meshes") + "/")
 
 
 def main():
@@ -39,7 +31,8 @@ def main():
         jobs = {name: pool.submit(ironing_predictor.report, os.path.join(args.work, name))
                 if args.report_only else
                 pool.submit(ironing_predictor.run, args.covcontact, args.work, name,
-                            absolute_paths(open(os.path.join(DECKS, name + ".deck")).read()),
+                            ironing_predictor.absolute_paths(
+                                open(os.path.join(DECKS, name + ".deck")).read(), DECKS),
                             args.limit)
                 for name in names}
     print("| deck | developed | its (line-search retries / cut-backs) | mean Fz | mean Fx/Fz |")

@@ -40,10 +40,12 @@ VARIANTS = [
 ]
 
 
-def absolute_paths(text):
-    mesh = os.path.join(ROOT, "meshes", "ironing.geo")
-    return (text.replace('"ironing_model.inc"', '"' + os.path.join(DECKS, "ironing_model.inc") + '"')
-            .replace('"../../../meshes/ironing.geo"', '"' + mesh + '"'))
+def absolute_paths(text, deck_dir=DECKS):
+    """A deck of input/stress/*/ with its includes (beside it) and its mesh (in meshes/) given
+    absolute paths, so that it runs from --work (this script's decks, and ball_cases.py's)."""
+    text = re.sub(r'^include "([^"/]+)"',
+                  lambda m: f'include "{os.path.join(deck_dir, m.group(1))}"', text, flags=re.M)
+    return text.replace('"../../../meshes/', '"' + os.path.join(ROOT, "meshes") + "/")
 
 
 def with_predictor(text):

@@ -162,8 +162,8 @@ class UmfpackFactor {
   // factorized matrix where the residual calls for it (kRefineAbove). UMFPACK's own refinement
   // (IRSTEP 2) computes componentwise backward errors and attempts a second step that it then
   // discards, on every solve measured: 10.7 ms per solve of the die model's tangent against
-  // 1.75 ms for the factor alone. Without refinement (applyFactor) the matrix is not read at
-  // all; it may belong to a later tangent by now.
+  // 1.75 ms for the factor alone. Without refinement (applyFactorTo alone) the matrix's values
+  // are not read at all; they may belong to a later tangent by now.
   Eigen::VectorXd solve(const Eigen::VectorXd& rhs, bool refine) {
     if (!numeric_ || !matrix_) throw std::logic_error("UMFPACK: solve() without factorization");
     Eigen::VectorXd solution = applyFactorTo(rhs);
