@@ -35,13 +35,14 @@ def main():
                                 open(os.path.join(DECKS, name + ".deck")).read(), DECKS),
                             args.limit)
                 for name in names}
-    print("| deck | developed | its (line-search retries / cut-backs) | mean Fz | mean Fx/Fz |")
+    print("| deck | developed | its (+discarded, line-search retries / cut-backs) | mean Fz | "
+          "mean Fx/Fz |")
     print("|---|---|---|---|---|")
     for name in names:
         result = jobs[name].result()
         fz, ratio = result.get("Fz_mean"), result.get("Fx/Fz_mean")
-        print(f"| `{name}` | {ironing_predictor.cell(result)} | {result.get('iterations', 0)} "
-              f"({result.get('line_search_retries', 0)} / {result.get('cutbacks', 0)}) | "
+        print(f"| `{name}` | {ironing_predictor.cell(result)} | "
+              f"{ironing_predictor.iterations_cell(result)} | "
               + (f"{fz:.4g}" if fz is not None else "-") + " | "
               + (f"{abs(ratio):.3f}" if ratio is not None else "-") + " |")
 

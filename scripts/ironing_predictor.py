@@ -94,6 +94,13 @@ def cell(result):
     return text
 
 
+def iterations_cell(result):
+    """Newton iterations of the converged steps (+ those of failed attempts, line-search
+    retries / cut-backs)."""
+    return (f"{result.get('iterations', 0)} (+{result.get('discarded_iterations', 0)}, "
+            f"{result.get('line_search_retries', 0)} / {result.get('cutbacks', 0)})")
+
+
 def parse_batch_args(doc, work, limit):
     """The command line of a batch of decks (this script, ball_cases.py)."""
     parser = argparse.ArgumentParser(description=doc.splitlines()[0])
@@ -123,13 +130,12 @@ def main():
                     pool.submit(run, args.covcontact, args.work, stem, variant, args.limit)))
     results = {(name, label): job.result() for name, label, job in jobs}
     print("| deck | default: developed | extrapolate: developed | extrapolate: its "
-          "(line-search retries / cut-backs), mean Fz |")
+          "(+discarded, line-search retries / cut-backs), mean Fz |")
     print("|---|---|---|---|")
     for name, _ in todo:
         before, after = results[(name, "default")], results[(name, "extrapolate")]
         fz = after.get("Fz_mean")
-        print(f"| `{name}` | {cell(before)} | {cell(after)} | {after.get('iterations', 0)} "
-              f"({after.get('line_search_retries', 0)} / {after.get('cutbacks', 0)})"
+        print(f"| `{name}` | {cell(before)} | {cell(after)} | {iterations_cell(after)}"
               + (f", {abs(fz):.2f}" if fz is not None else "") + " |")
 
 

@@ -40,6 +40,7 @@ def summarize(path):
         "iterations": sum(its),
         "cutbacks": int(summary.get("cutbacks", attempts)),
         "line_search_retries": int(summary.get("line_search_retries", 0)),
+        "discarded_iterations": int(summary.get("discarded_iterations", 0)),
     }
     if isinstance(out["outcome"], bytes):
         out["outcome"] = out["outcome"].decode()

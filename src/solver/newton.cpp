@@ -12,6 +12,7 @@
 #include <numeric>
 
 #include "common/stopwatch.hpp"
+#include "solver/newton_stall.hpp"
 #include "solver/rigid_body_modes.hpp"
 #include "solver/tangent_dump.hpp"
 
@@ -103,24 +104,6 @@ bool enteredCycle(std::vector<std::uint64_t>& activeSets, const ContactChanges& 
                                    activeSets.end();
   activeSets.push_back(changes.signature);
   return seen;
-}
-
-// A cycle without any state change: plain Newton alternating between two iterates (or stuck
-// at one) whose residual norms repeat (the slip direction of stiffly penalized points flipping
-// back and forth; issue 16: 0.267, 0.294, 0.267, ... of the first residual for 30 iterations
-// in a press at 100 times the automatic penalty). Two periods of norms equal to
-// kCycleNormMatch, checked only while the residual is above kCycleCheckAbove of the first (far
-// from the round-off floor and from the small non-smooth stagnations near convergence, which a
-// retry would not help).
-inline constexpr double kCycleNormMatch = 1e-3;
-inline constexpr double kCycleCheckAbove = 1e-3;
-bool residualCycles(const std::vector<double>& norms) {
-  const std::size_t k = norms.size();
-  if (k < 5 || norms[k - 1] <= kCycleCheckAbove * norms[0]) return false;
-  auto repeats = [&](std::size_t i) {
-    return std::abs(norms[i] - norms[i - 2]) <= kCycleNormMatch * norms[i];
-  };
-  return repeats(k - 1) && repeats(k - 2);
 }
 
 }  // namespace
@@ -338,6 +321,12 @@ NewtonResult Newton::solve(const NewtonStep& step, const NewtonSpec& spec,
                     fmt::format("the residual norms of iterations {} to {} repeat with period 2 "
                                 "(a cycle without state changes)",
                                 iteration - 3, iteration));
+    }
+    if (const int best = spec.lineSearch ? 0 : stoppedImproving(residualHistory); best > 0) {
+      return failed(iteration - 1, FailureKind::Diverged,
+                    fmt::format("the residual has stayed above its value of iteration {} for {} "
+                                "iterations (no progress)",
+                                best, kNoProgressIterations));
     }
     if (iteration == 1) {
       norms.firstResidual = step.referenceResidual > 0 ? step.referenceResidual : norms.residual;

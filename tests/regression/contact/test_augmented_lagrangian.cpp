@@ -200,28 +200,33 @@ TEST(AugmentedLagrangian, AStiffPenaltyConvergesToRoundoffAndMatchesTheConstrain
   EXPECT_LE(shortfall, deepest / 4e-3);
 }
 
-// Plain Newton at 100 times the automatic penalty alternates in the press between two iterates
-// whose residual norms repeat (0.267, 0.294, 0.267, ... of the first; no point changes state,
-// so the active-set cycle test does not see it). It used to spin all 30 iterations before the
-// line-search retry; the retry now starts once two periods repeat (newton.cpp, residualCycles).
-TEST(AugmentedLagrangian, APeriodTwoResidualCycleGoesToTheLineSearchAtOnce) {
+// Plain Newton at 100 times the automatic penalty does not converge in the press: the residual
+// falls to 5e-2 of the first at iteration 2, climbs to about 0.5 and then alternates between two
+// iterates (0.495, 0.509, 0.495, ...; no point changes state, so the active-set cycle test does
+// not see it). It used to spin all 30 iterations before the line-search retry, then 10 until
+// two periods repeated (residualCycles); now the retry starts once four iterations have stayed
+// above the best one (stoppedImproving, newton_stall.hpp), and the diverging plain attempts of
+// the next steps end as early. Same converged steps: 42 Newton iterations, 4 line-search
+// retries; 58 discarded iterations before, 23 now.
+TEST(AugmentedLagrangian, AStiffPressThatStopsImprovingGoesToTheLineSearchAtOnce) {
   const DeckRun stiff = runSmallBlock("enforcement=penalty eps_scale=100");
   ASSERT_EQ(stiff.summary.outcome, RunSummary::Outcome::Completed);
   ASSERT_FALSE(stiff.cutbacks.empty());
   const CutbackRecord& first = stiff.cutbacks.front();
   EXPECT_EQ(first.step, 1);
-  EXPECT_NE(first.reason.find("repeat with period 2"), std::string::npos) << first.reason;
+  EXPECT_NE(first.reason.find("above its value of iteration 2 for 4 iterations (no progress)"),
+            std::string::npos)
+      << first.reason;
   std::vector<double> plain;  // relative residuals of the press's first (plain) attempt
   for (const IterationRecord& row : stiff.iterationsOf(1)) {
     if (row.attempt == 0) plain.push_back(row.relativeResidual);
   }
-  ASSERT_GE(plain.size(), 4u);
-  EXPECT_LT(plain.size(), 20u);  // before: 30 iterations
-  const std::size_t k = plain.size() - 1;
-  EXPECT_LE(std::abs(plain[k] - plain[k - 2]), 1e-3 * plain[k]);
-  EXPECT_GT(std::abs(plain[k] - plain[k - 1]), 1e-2 * plain[k]);  // two iterates, not a stall
-  EXPECT_GT(plain[k], 1e-3);                                      // far from convergence
-  EXPECT_LT(stiff.summary.discardedIterations, 120);              // before: 4 retries after 30 each
+  ASSERT_GE(plain.size(), 3u);
+  EXPECT_LE(plain.size(), 6u);  // before: 30 iterations, then 10
+  for (std::size_t k = 2; k < plain.size(); ++k) EXPECT_GT(plain[k], plain[1]);
+  EXPECT_GT(plain.back(), 1e-3);  // far from convergence
+  EXPECT_EQ(stiff.summary.totalIterations, 42);
+  EXPECT_LT(stiff.summary.discardedIterations, 30);  // before: 58
 }
 
 // The stiff end of the augmented Lagrangian without retries (issue 16, part 3). At 100 times the

@@ -3,10 +3,12 @@
 (t = 0.5) a slab node crossing a facet edge of the die sets off state changes whose Newton
 iterates fold a slab element (det J < 0). Cut back, the same fold came back at every step size
 down to dt = 1e-10 and the run stopped at t = 0.495. The step is now retried with the line
-search, which backs off from folded iterates: 51 steps must run without a single cut-back, the
-fold at step 50 must be met (so that the case still tests it) and be overcome by that retry
-(docs/verification/sliding.md, fifteenth session; the whole deck: 100 steps, 566 iterations,
-no cut-back). About 30 s on one thread."""
+search, which backs off from folded iterates: 51 steps must run without a single cut-back and
+step 50 must be retried with the line search (docs/verification/sliding.md, fifteenth session;
+the whole deck: 100 steps, 566 iterations, no cut-back). Since the twenty-first session the
+plain attempt of step 50 ends before the fold, when its residual has stayed above its best for
+four iterations (newton_stall.hpp); the fold's own retry is tested by
+InvertedElement.OneDeepPunchStepIsRetriedWithLineSearch... About 30 s on one thread."""
 import sys
 
 import stress_script
@@ -19,10 +21,9 @@ retries = [line for line in (r.stdout + r.stderr).splitlines() if line.startswit
 cutbacks = [line for line in retries if "retrying the step with line search" not in line]
 if cutbacks:
     failures.append("cut-backs:\n" + "\n".join(cutbacks))
-folds = [line for line in retries if "det J" in line]
-if not any(line.startswith("cut-back at step 50 ") for line in folds):
-    failures.append("no line-search retry for a folded element at step 50: the case no longer "
-                    "meets the fold it is meant to test; retries:\n" + "\n".join(retries))
+if not any(line.startswith("cut-back at step 50 ") for line in retries):
+    failures.append("no line-search retry at step 50: the case no longer meets the hard step "
+                    "it is meant to test; retries:\n" + "\n".join(retries))
 if "completed: 51 steps" not in r.stdout:
     failures.append("the run did not complete 51 steps:\n" + r.stdout[-2000:])
 for f in failures:

@@ -1,0 +1,54 @@
+// Plain Newton that is not going to converge, told from its residual norms alone (newton.cpp
+// ends such an attempt early and the load stepper retries the step with the line search).
+// Contact makes the residual piecewise smooth; full Newton steps can then cycle or drift where
+// the line search gets through, and every iteration spent before the retry is wasted. Kept
+// apart from newton.cpp so that unit tests can feed them histories.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <vector>
+
+namespace cc {
+
+// `norms` below: ||rhs|| of each iteration of the attempt so far, the first iteration's first.
+
+// A cycle without any state change: plain Newton alternating between two iterates (or stuck
+// at one) whose residual norms repeat (the slip direction of stiffly penalized points flipping
+// back and forth; issue 16: 0.267, 0.294, 0.267, ... of the first residual for 30 iterations
+// in a press at 100 times the automatic penalty). Two periods of norms equal to
+// kCycleNormMatch, checked only while the residual is above kCycleCheckAbove of the first (far
+// from the round-off floor and from the small non-smooth stagnations near convergence, which a
+// retry would not help).
+inline constexpr double kCycleNormMatch = 1e-3;
+inline constexpr double kCycleCheckAbove = 1e-3;
+inline bool residualCycles(const std::vector<double>& norms) {
+  const std::size_t k = norms.size();
+  if (k < 5 || norms[k - 1] <= kCycleCheckAbove * norms[0]) return false;
+  auto repeats = [&](std::size_t i) {
+    return std::abs(norms[i] - norms[i - 2]) <= kCycleNormMatch * norms[i];
+  };
+  return repeats(k - 1) && repeats(k - 2);
+}
+
+// Plain Newton that has not come below its best residual for kNoProgressIterations iterations
+// in a row, still far above convergence, is not converging: on example 6.1(a) the one-step
+// press lowered the residual to 3e-3 of its first value at iteration 2, then drifted up to 7e-2
+// through 22 iterations of stick/slip changes before the period-2 detector above stopped it;
+// the line-search retry then converged in 6. Such a step is handed to the line search as soon
+// as the drift is plain. Near convergence (below kCycleCheckAbove of the first residual) the
+// small non-smooth stagnations are left alone, as for the cycles.
+inline constexpr std::size_t kNoProgressIterations = 4;
+// The iteration (1-based) of the best residual when the last kNoProgressIterations were all
+// above it, else 0.
+inline int stoppedImproving(const std::vector<double>& norms) {
+  const std::size_t k = norms.size();
+  if (k < kNoProgressIterations + 2 || norms[k - 1] <= kCycleCheckAbove * norms[0]) return 0;
+  const auto recent = norms.end() - static_cast<std::ptrdiff_t>(kNoProgressIterations);
+  const auto best = std::min_element(norms.begin() + 1, recent);
+  if (!std::all_of(recent, norms.end(), [&](double norm) { return norm > *best; })) return 0;
+  return static_cast<int>(best - norms.begin()) + 1;
+}
+
+}  // namespace cc

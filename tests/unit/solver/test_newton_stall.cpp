@@ -1,0 +1,70 @@
+// The residual-history tests that end a plain Newton attempt early (newton_stall.hpp), on
+// histories recorded from runs or shaped like them.
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "solver/newton_stall.hpp"
+
+namespace cc {
+namespace {
+
+// The first iteration (1-based) at which the test fires on a prefix of `norms`, 0 if never.
+template <typename Test>
+int firstFiring(const std::vector<double>& norms, Test test) {
+  for (std::size_t k = 1; k <= norms.size(); ++k) {
+    if (test(std::vector<double>(norms.begin(), norms.begin() + static_cast<long>(k)))) {
+      return static_cast<int>(k);
+    }
+  }
+  return 0;
+}
+
+int firstNoProgress(const std::vector<double>& norms) {
+  return firstFiring(norms, [](const std::vector<double>& h) { return stoppedImproving(h) > 0; });
+}
+
+int firstCycle(const std::vector<double>& norms) {
+  return firstFiring(norms, [](const std::vector<double>& h) { return residualCycles(h); });
+}
+
+// Example 6.1(a)'s one-step press (paper mesh, --newton-log), relative residuals of the plain
+// attempt: down to 3e-3 at iteration 2, then up through stick/slip changes. The period-2 test
+// stopped it at iteration 25; the drift is plain at iteration 6.
+TEST(NewtonStall, ThePressOfExample61StopsImprovingAtIterationSix) {
+  const std::vector<double> press{1.0,      2.977e-3, 3.755e-3, 9.558e-3, 9.235e-3, 2.706e-2,
+                                  2.869e-2, 3.275e-2, 3.879e-2, 3.683e-2, 3.784e-2};
+  EXPECT_EQ(firstNoProgress(press), 6);
+  EXPECT_EQ(stoppedImproving(std::vector<double>(press.begin(), press.begin() + 6)), 2);
+  EXPECT_EQ(firstCycle(press), 0);
+}
+
+// Converging histories never fire: a first iterate far off (example 6.1(a) step 2), and a
+// residual that rises for three iterations of active-set changes and then comes below its best.
+TEST(NewtonStall, ConvergingHistoriesDoNotFire) {
+  const std::vector<double> bumpThenQuadratic{1.0, 0.927, 4.564e-5, 2.779e-8, 1e-14};
+  const std::vector<double> threeUpThenDown{1.0, 1e-2, 2e-2, 4e-2, 3e-2, 8e-3, 1e-4, 1e-8};
+  EXPECT_EQ(firstNoProgress(bumpThenQuadratic), 0);
+  EXPECT_EQ(firstNoProgress(threeUpThenDown), 0);
+  EXPECT_EQ(firstCycle(bumpThenQuadratic), 0);
+  EXPECT_EQ(firstCycle(threeUpThenDown), 0);
+}
+
+// Near convergence (below 1e-3 of the first residual) a stagnation is left to the iteration
+// limit: there it is round-off or a small non-smooth plateau, which a retry would not help.
+TEST(NewtonStall, AStagnationNearConvergenceDoesNotFire) {
+  const std::vector<double> plateau{1.0, 1e-2, 1e-5, 2e-5, 3e-5, 2e-5, 3e-5, 2e-5, 3e-5};
+  EXPECT_EQ(firstNoProgress(plateau), 0);
+  EXPECT_EQ(firstCycle(plateau), 0);
+}
+
+// A period-2 cycle whose low iterate is the best so far is no drift above the best: the cycle
+// test is the one that sees it (the stiff press of issue 16: 0.267, 0.294, 0.267, ...).
+TEST(NewtonStall, APeriodTwoCycleThroughTheBestIterateIsTheCycleTestsToFind) {
+  const std::vector<double> cycle{1.0, 0.5, 0.267, 0.294, 0.267, 0.294, 0.267, 0.294, 0.267};
+  EXPECT_EQ(firstCycle(cycle), 6);
+  EXPECT_EQ(firstNoProgress(cycle), 0);
+}
+
+}  // namespace
+}  // namespace cc
