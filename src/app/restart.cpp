@@ -24,7 +24,8 @@ StartState restartFrom(const std::string& file, int fromStep, Model& model) {
   start.step = point.step;
   start.time = point.time;
   start.displacement = std::move(point.record.displacement);
-  start.stepSize = {point.record.stepFraction, point.record.easySteps};
+  start.stepSize = {point.record.stepFraction, point.record.easySteps,
+                    point.record.lineSearchSteps};
   start.lastIncrement = std::move(point.record.lastIncrement);
   start.lastDt = point.record.lastDt;
   return start;
@@ -40,6 +41,7 @@ RestartRecord restartRecordOf(const Model& model, const Eigen::VectorXd& displac
   record.displacement = displacement;
   record.stepFraction = nextStepSize.fraction;
   record.easySteps = nextStepSize.easySteps;
+  record.lineSearchSteps = nextStepSize.lineSearchSteps;
   return record;
 }
 

@@ -289,6 +289,7 @@ NewtonResult Newton::solve(const NewtonStep& step, const NewtonSpec& spec,
   // predictor's own residual and energy if larger (a poor prediction).
   Eigen::VectorXd predictedFree, predictedForce;
   std::vector<double> residualHistory;  // ||rhs|| per iteration
+  int shortenedUpdates = 0;             // iterations whose line search shortened the update
   for (int iteration = 1; iteration <= spec.maxIterations; ++iteration) {
     Eigen::VectorXd rhs;
     ContactChanges changes;
@@ -421,6 +422,7 @@ NewtonResult Newton::solve(const NewtonStep& step, const NewtonSpec& spec,
     }
     if (iteration == 1) applyPrescribed();
     const double fraction = spec.lineSearch ? lineSearch(step, du, rhs, displacement) : 1.0;
+    if (fraction < 1) ++shortenedUpdates;
     addToFree(displacement, du, fraction);
 
     observer_.iteration({step.step, step.attempt, iteration, step.time, norms.residual,
@@ -437,7 +439,9 @@ NewtonResult Newton::solve(const NewtonStep& step, const NewtonSpec& spec,
       }
       finalRelativeResidual_ =
           norms.firstResidual > 0 ? safeNorm(freeResidual()) / norms.firstResidual : 0.0;
-      return converged(iteration);
+      NewtonResult result = converged(iteration);
+      result.shortenedUpdates = shortenedUpdates;
+      return result;
     }
     if (observer_.stopRequested()) {
       return {NewtonResult::Status::Interrupted, iteration, FailureKind::Diverged, "interrupted"};

@@ -97,7 +97,8 @@ struct NewtonResult {
   Status status = Status::Failed;
   int iterations = 0;  // converged: see the definition above; failed: iteration reached
   FailureKind failure = FailureKind::Diverged;
-  std::string message;  // why it failed
+  std::string message;       // why it failed
+  int shortenedUpdates = 0;  // iterations whose line search took less than the full update
 };
 
 // Work counters of a run (benchmarks, progress line).
