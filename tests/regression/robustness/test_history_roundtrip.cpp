@@ -21,6 +21,7 @@ class SavingObserver : public StepObserver {
       saved.displacement = displacement;
       saved.stepFraction = stepper_->nextStepSize().fraction;
       saved.easySteps = stepper_->nextStepSize().easySteps;
+      saved.lineSearchSteps = stepper_->nextStepSize().lineSearchSteps;
       savedTime = time;
     }
     lastDisplacement = displacement;
@@ -73,7 +74,7 @@ TEST(History, SavedElementAndContactHistoryRestoresExactlyIntoAFreshModel) {
   start.step = 7;
   start.time = observer.savedTime;
   start.displacement = saved.displacement;
-  start.stepSize = {saved.stepFraction, saved.easySteps};
+  start.stepSize = {saved.stepFraction, saved.easySteps, saved.lineSearchSteps};
   ASSERT_EQ(restarted.run(start).outcome, RunSummary::Outcome::Completed);
   EXPECT_EQ(continued.lastStep, observer.lastStep);
   EXPECT_LT((continued.lastDisplacement - observer.lastDisplacement).cwiseAbs().maxCoeff(),
@@ -118,7 +119,8 @@ TEST(History, AnAugmentedRunContinuesWithItsMultipliersAndRaisedPenalty) {
   start.step = saveAt;
   start.time = observer.savedTime;
   start.displacement = observer.saved.displacement;
-  start.stepSize = {observer.saved.stepFraction, observer.saved.easySteps};
+  start.stepSize = {observer.saved.stepFraction, observer.saved.easySteps,
+                    observer.saved.lineSearchSteps};
   ASSERT_EQ(restarted.run(start).outcome, RunSummary::Outcome::Completed);
   EXPECT_EQ(continued.lastStep, observer.lastStep);
   EXPECT_LT((continued.lastDisplacement - observer.lastDisplacement).cwiseAbs().maxCoeff(),
