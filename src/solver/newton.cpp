@@ -323,7 +323,9 @@ NewtonResult Newton::solve(const NewtonStep& step, const NewtonSpec& spec,
                                 "(a cycle without state changes)",
                                 iteration - 3, iteration));
     }
-    if (const int best = spec.lineSearch ? 0 : stoppedImproving(residualHistory); best > 0) {
+    if (const int best =
+            spec.lineSearch ? 0 : stoppedImproving(residualHistory, norms.firstResidual);
+        best > 0) {
       return failed(iteration - 1, FailureKind::Diverged,
                     fmt::format("the residual has stayed above its value of iteration {} for {} "
                                 "iterations (no progress)",

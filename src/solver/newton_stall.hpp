@@ -37,14 +37,18 @@ inline bool residualCycles(const std::vector<double>& norms) {
 // press lowered the residual to 3e-3 of its first value at iteration 2, then drifted up to 7e-2
 // through 22 iterations of stick/slip changes before the period-2 detector above stopped it;
 // the line-search retry then converged in 6. Such a step is handed to the line search as soon
-// as the drift is plain. Near convergence (below kCycleCheckAbove of the first residual) the
-// small non-smooth stagnations are left alone, as for the cycles.
+// as the drift is plain. Near convergence (below kCycleCheckAbove of the step's reference
+// residual) the small non-smooth stagnations are left alone, as for the cycles. The reference is
+// the one the convergence test uses: with an extrapolating predictor the first iterate's own
+// residual is tiny, and measured against it the faceted ironing die's segment hops at 1e-7 of
+// the step's residual (which plain Newton gets through in 6-8 iterations) passed for a drift
+// far from convergence; the line search then stalled there and the steps were cut back.
 inline constexpr std::size_t kNoProgressIterations = 4;
 // The iteration (1-based) of the best residual when the last kNoProgressIterations were all
-// above it, else 0.
-inline int stoppedImproving(const std::vector<double>& norms) {
+// above it, else 0. `reference`: the step's reference residual (Newton's firstResidual).
+inline int stoppedImproving(const std::vector<double>& norms, double reference) {
   const std::size_t k = norms.size();
-  if (k < kNoProgressIterations + 2 || norms[k - 1] <= kCycleCheckAbove * norms[0]) return 0;
+  if (k < kNoProgressIterations + 2 || norms[k - 1] <= kCycleCheckAbove * reference) return 0;
   const auto recent = norms.end() - static_cast<std::ptrdiff_t>(kNoProgressIterations);
   const auto best = std::min_element(norms.begin() + 1, recent);
   if (!std::all_of(recent, norms.end(), [&](double norm) { return norm > *best; })) return 0;
