@@ -21,7 +21,6 @@ class SavingObserver : public StepObserver {
       saved.displacement = displacement;
       saved.stepFraction = stepper_->nextStepSize().fraction;
       saved.easySteps = stepper_->nextStepSize().easySteps;
-      saved.lineSearchSteps = stepper_->nextStepSize().lineSearchSteps;
       savedTime = time;
     }
     lastDisplacement = displacement;
@@ -74,7 +73,7 @@ TEST(History, SavedElementAndContactHistoryRestoresExactlyIntoAFreshModel) {
   start.step = 7;
   start.time = observer.savedTime;
   start.displacement = saved.displacement;
-  start.stepSize = {saved.stepFraction, saved.easySteps, saved.lineSearchSteps};
+  start.stepSize = {saved.stepFraction, saved.easySteps};
   ASSERT_EQ(restarted.run(start).outcome, RunSummary::Outcome::Completed);
   EXPECT_EQ(continued.lastStep, observer.lastStep);
   EXPECT_LT((continued.lastDisplacement - observer.lastDisplacement).cwiseAbs().maxCoeff(),
@@ -119,8 +118,7 @@ TEST(History, AnAugmentedRunContinuesWithItsMultipliersAndRaisedPenalty) {
   start.step = saveAt;
   start.time = observer.savedTime;
   start.displacement = observer.saved.displacement;
-  start.stepSize = {observer.saved.stepFraction, observer.saved.easySteps,
-                    observer.saved.lineSearchSteps};
+  start.stepSize = {observer.saved.stepFraction, observer.saved.easySteps};
   ASSERT_EQ(restarted.run(start).outcome, RunSummary::Outcome::Completed);
   EXPECT_EQ(continued.lastStep, observer.lastStep);
   EXPECT_LT((continued.lastDisplacement - observer.lastDisplacement).cwiseAbs().maxCoeff(),
