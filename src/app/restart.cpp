@@ -24,8 +24,7 @@ StartState restartFrom(const std::string& file, int fromStep, Model& model) {
   start.step = point.step;
   start.time = point.time;
   start.displacement = std::move(point.record.displacement);
-  start.stepSize = {point.record.stepFraction, point.record.easySteps,
-                    point.record.lineSearchSteps};
+  start.stepSize = {point.record.stepFraction, point.record.easySteps};
   start.lastIncrement = std::move(point.record.lastIncrement);
   start.lastDt = point.record.lastDt;
   return start;
@@ -41,7 +40,6 @@ RestartRecord restartRecordOf(const Model& model, const Eigen::VectorXd& displac
   record.displacement = displacement;
   record.stepFraction = nextStepSize.fraction;
   record.easySteps = nextStepSize.easySteps;
-  record.lineSearchSteps = nextStepSize.lineSearchSteps;
   return record;
 }
 

@@ -32,7 +32,6 @@ void writeRestart(h5::FileRef file, hid_t stepGroup, const RestartRecord& restar
   h5::Group group = h5::createGroup(file, stepGroup, layout::kRestartGroup);
   h5::writeAttribute(file, group.get(), "step_fraction", restart.stepFraction);
   h5::writeAttribute(file, group.get(), "easy_steps", restart.easySteps);
-  h5::writeAttribute(file, group.get(), "line_search_steps", restart.lineSearchSteps);
   h5::writeAttribute(file, group.get(), "with_displacement", withDisplacement ? 1 : 0);
   if (withDisplacement) {
     h5::writeDoubles(file, group.get(), layout::kDisplacement, restart.displacement.data(),
@@ -90,10 +89,6 @@ RestartPoint readRestart(const std::string& path, int step) {
   RestartRecord& record = point.record;
   record.stepFraction = reader.numberAttribute(group, "step_fraction");
   record.easySteps = static_cast<int>(reader.numberAttribute(group, "easy_steps"));
-  // Files written before the twenty-first session have no such attribute: no line search due.
-  if (reader.hasAttribute(group, "line_search_steps")) {
-    record.lineSearchSteps = static_cast<int>(reader.numberAttribute(group, "line_search_steps"));
-  }
   const bool own = reader.numberAttribute(group, "with_displacement") != 0;
   const Eigen::MatrixXd nodal =
       reader.readMatrix((own ? group : stepPath) + "/" + layout::kDisplacement);

@@ -69,7 +69,6 @@ struct RestartRecord {
   std::vector<std::pair<std::string, Eigen::MatrixXd>> contactHistory;      // per contact pair
   double stepFraction = 1;  // the next step's size in units of its phase's dt
   int easySteps = 0;        // consecutive easy steps counted towards regrowth
-  int lineSearchSteps = 0;  // steps still solved with the line search after a retry
   // The step's own increment and dt, for `predictor=extrapolate` (empty when no phase
   // extrapolates): a restarted run then predicts its first step as the full run did.
   Eigen::VectorXd lastIncrement;  // 3 * numNodes, node-major

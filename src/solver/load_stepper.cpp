@@ -25,20 +25,6 @@ bool lineSearchMayHelp(const NewtonResult& result) {
           result.failure == FailureKind::InvertedElement);
 }
 
-// A step that needed the line-search retry says that plain Newton is out of its depth in this
-// stretch of the load path, and the next steps start with the line search rather than waste a
-// failed plain attempt each (issue 14, twenty-first session). The stretch lasts while the line
-// search keeps shortening updates: a step in which it shortened one keeps it for
-// kLineSearchStepsAfterRetry steps more, a step in which it took every full update for one more
-// step only, so that two such steps in a row end it. Where full steps do, the line search takes
-// them and Newton's path is the plain one, at one residual assembly per iteration; but its
-// Armijo test also shortens updates that plain Newton would have survived (a residual that
-// rises for an iteration while the active set settles): on the soft faceted ball STS with the
-// line search in every step took 468 Newton iterations against 421 plain, and example 6.1's
-// coarse restart deck 3 more with ten fixed steps of it after a retry. Measured on the ball
-// decks (docs/verification/sliding.md, twenty-first session).
-constexpr int kLineSearchStepsAfterRetry = 10;
-
 // A phase position (in units of its dt) this close to a nominal step end is that step end:
 // absorbs the round-off of (t - T) / dt at a restart and of non-dyadic cut-back factors.
 constexpr double kPositionSnap = 1e-9;
@@ -64,11 +50,10 @@ double snapped(double position) {
 
 // Step size and counters of the phase being run.
 struct LoadStepper::StepControl {
-  double fraction = 1;      // step size in units of the phase's dt
-  int easySteps = 0;        // consecutive converged steps with few iterations
-  int lineSearchSteps = 0;  // steps still solved with the line search after a retry
-  int cutbacks = 0;         // cut-backs of the step being attempted
-  int attempts = 0;         // Newton attempts of the step being attempted (cut-backs and retries)
+  double fraction = 1;  // step size in units of the phase's dt
+  int easySteps = 0;    // consecutive converged steps with few iterations
+  int cutbacks = 0;     // cut-backs of the step being attempted
+  int attempts = 0;     // Newton attempts of the step being attempted (cut-backs and retries)
   int convergedInPhase = 0;
   bool singularAtStart = false;  // the last attempt was singular in its first iteration
 };
@@ -180,7 +165,6 @@ bool LoadStepper::runPhase(const PhaseSpec& phase, double phaseStart, PhaseRun& 
     if (position > 0) {
       control.fraction = nextStepSize_.fraction;
       control.easySteps = nextStepSize_.easySteps;
-      control.lineSearchSteps = nextStepSize_.lineSearchSteps;
     }
   }
   while (position < phase.steps) {
@@ -189,18 +173,14 @@ bool LoadStepper::runPhase(const PhaseSpec& phase, double phaseStart, PhaseRun& 
     NewtonStep step{run.step + 1, control.attempts++, targetTime, run.time};
     step.predictedIncrement = predictedIncrement(phase, targetTime, run);
     NewtonSpec solvedWith = phase.newton;  // the re-solves of augmentStep use the same
-    solvedWith.lineSearch = phase.newton.lineSearch || control.lineSearchSteps > 0;
-    NewtonResult result = newton_->solve(step, solvedWith, run.displacement);
-    if (lineSearchMayHelp(result) && !solvedWith.lineSearch) {
+    NewtonResult result = newton_->solve(step, phase.newton, run.displacement);
+    if (lineSearchMayHelp(result) && !phase.newton.lineSearch) {
       // Tried on the same step before the step is cut back (lineSearchMayHelp).
       ++summary_.lineSearchRetries;
       const NewtonStep retry = retryStep(step, result, (target - position) * phase.dt,
                                          "retrying the step with line search: ", control, run);
       solvedWith.lineSearch = true;
       result = newton_->solve(retry, solvedWith, run.displacement);
-      if (result.status == NewtonResult::Status::Converged) {
-        control.lineSearchSteps = kLineSearchStepsAfterRetry + 1;  // this step and the next ones
-      }
     }
     if (result.status == NewtonResult::Status::Failed && result.failure == FailureKind::Diverged &&
         phase.newton.penaltyContinuation && problem_.stiffestPenaltyRatio() > kContinuationRatio) {
@@ -224,14 +204,8 @@ bool LoadStepper::runPhase(const PhaseSpec& phase, double phaseStart, PhaseRun& 
       if (!acceptStep(phase, result, targetTime, position >= phase.steps, control, run)) {
         return false;
       }
-    } else {
-      // A step that failed with the line search as well starts plain again, smaller: on a thin
-      // shell pressed by a rigid cylinder (thin_shell_on_cylinder.deck) plain Newton converged
-      // at half the step in 10 iterations where the line search stalled at every step size.
-      control.lineSearchSteps = 0;
-      if (!rejectStep(phase, result, step, (target - position) * phase.dt, control, run)) {
-        return false;
-      }
+    } else if (!rejectStep(phase, result, step, (target - position) * phase.dt, control, run)) {
+      return false;
     }
   }
   return true;
@@ -393,19 +367,13 @@ bool LoadStepper::acceptStep(const PhaseSpec& phase, const NewtonResult& result,
   summary_.finalTime = time;
   const bool write = control.convergedInPhase % phase.outputEvery == 0 || phaseEnd;
   const CutbackSpec& cutback = phase.cutback;
-  if (control.lineSearchSteps > 0) {
-    control.lineSearchSteps = result.shortenedUpdates > 0
-                                  ? kLineSearchStepsAfterRetry
-                                  : std::min(control.lineSearchSteps - 1, 1);
-  }
   control.easySteps = result.iterations <= cutback.easyIterations ? control.easySteps + 1 : 0;
   if (control.easySteps >= cutback.growAfter && control.fraction < 1) {
     control.fraction = std::min(1.0, control.fraction * cutback.growFactor);
     control.easySteps = 0;
   }
   // At a phase end the next phase starts with a full step.
-  nextStepSize_ = phaseEnd ? StepSize{}
-                           : StepSize{control.fraction, control.easySteps, control.lineSearchSteps};
+  nextStepSize_ = phaseEnd ? StepSize{} : StepSize{control.fraction, control.easySteps};
   observer_.convergedResidual(newton_->finalRelativeResidual());
   observer_.stepConverged(run.step, time, result.iterations, control.cutbacks, run.displacement,
                           newton_->internalForce(), write);

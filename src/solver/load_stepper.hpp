@@ -36,12 +36,10 @@ struct RunSummary {
 };
 
 // The automatic step size: the next step in units of its phase's dt, and the consecutive easy
-// steps counted towards regrowth; and the steps still to be solved with the line search after a
-// line-search retry (load_stepper.cpp, kLineSearchStepsAfterRetry).
+// steps counted towards regrowth.
 struct StepSize {
   double fraction = 1;
   int easySteps = 0;
-  int lineSearchSteps = 0;
 };
 
 // Where a run starts: t = 0 and zero displacement, or a restart from a stored step (with the

@@ -289,7 +289,6 @@ NewtonResult Newton::solve(const NewtonStep& step, const NewtonSpec& spec,
   // predictor's own residual and energy if larger (a poor prediction).
   Eigen::VectorXd predictedFree, predictedForce;
   std::vector<double> residualHistory;  // ||rhs|| per iteration
-  int shortenedUpdates = 0;             // iterations whose line search shortened the update
   for (int iteration = 1; iteration <= spec.maxIterations; ++iteration) {
     Eigen::VectorXd rhs;
     ContactChanges changes;
@@ -424,7 +423,6 @@ NewtonResult Newton::solve(const NewtonStep& step, const NewtonSpec& spec,
     }
     if (iteration == 1) applyPrescribed();
     const double fraction = spec.lineSearch ? lineSearch(step, du, rhs, displacement) : 1.0;
-    if (fraction < 1) ++shortenedUpdates;
     addToFree(displacement, du, fraction);
 
     observer_.iteration({step.step, step.attempt, iteration, step.time, norms.residual,
@@ -441,9 +439,7 @@ NewtonResult Newton::solve(const NewtonStep& step, const NewtonSpec& spec,
       }
       finalRelativeResidual_ =
           norms.firstResidual > 0 ? safeNorm(freeResidual()) / norms.firstResidual : 0.0;
-      NewtonResult result = converged(iteration);
-      result.shortenedUpdates = shortenedUpdates;
-      return result;
+      return converged(iteration);
     }
     if (observer_.stopRequested()) {
       return {NewtonResult::Status::Interrupted, iteration, FailureKind::Diverged, "interrupted"};

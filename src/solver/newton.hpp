@@ -97,8 +97,7 @@ struct NewtonResult {
   Status status = Status::Failed;
   int iterations = 0;  // converged: see the definition above; failed: iteration reached
   FailureKind failure = FailureKind::Diverged;
-  std::string message;       // why it failed
-  int shortenedUpdates = 0;  // iterations whose line search took less than the full update
+  std::string message;  // why it failed
 };
 
 // Work counters of a run (benchmarks, progress line).

@@ -1,9 +1,7 @@
 // Load stepper: cut-back and regrowth landing exactly on nominal times, no time drift, the
-// cut-back limit, singular systems, interruption, output selection, restart, the
-// extrapolating predictor and the line search kept after a retry.
+// cut-back limit, singular systems, interruption, output selection, restart and the
+// extrapolating predictor.
 #include <gtest/gtest.h>
-
-#include <cmath>
 
 #include "solver/load_stepper.hpp"
 #include "spring_chain.hpp"
@@ -301,74 +299,6 @@ TEST(LoadStepper, RestartWithTheLastIncrementPredictsAsTheFullRun) {
     } else {
       EXPECT_GT(observer.steps[0].iterations, fullFirst);  // not extrapolated
     }
-  }
-}
-
-// One atan spring unloaded from its plateau, d = 256 / 4^t under the force atan(256 / 4^t): the
-// full Newton update of every step overshoots far to the other side of the root and runs away
-// (from d = 256 towards 64 the first update lands at d = -512), so every plain attempt fails;
-// the line search gets through. After the first step's retry the next steps start with the line
-// search (kLineSearchStepsAfterRetry, it keeps shortening updates): one retry where there were
-// four. A restart inside that stretch carries it (StepSize::lineSearchSteps): without it the
-// restarted run's first step pays the retry again.
-SpringChain unloadingFromThePlateau() {
-  return SpringChain(1, SpringLaw::arctangent(), {},
-                     [](double t) { return std::atan(256 / std::pow(4.0, t)); });
-}
-
-PhaseSpec unloading() {
-  PhaseSpec spec = phase(4, 1.0);
-  spec.newton.maxIterations = 12;
-  return spec;
-}
-
-TEST(LoadStepper, AfterALineSearchRetryTheNextStepsStartWithTheLineSearch) {
-  SpringChain chain = unloadingFromThePlateau();
-  struct Recorder : RecordingObserver {
-    LoadStepper* stepper = nullptr;
-    std::vector<StepSize> next;
-    void stepConverged(int step, double time, int iterationCount, int cutbackCount,
-                       const Eigen::VectorXd& displacement, const Eigen::VectorXd& internalForce,
-                       bool writeOutput) override {
-      RecordingObserver::stepConverged(step, time, iterationCount, cutbackCount, displacement,
-                                       internalForce, writeOutput);
-      next.push_back(stepper->nextStepSize());
-    }
-  } recorder;
-  LoadStepper stepper(chain, recorder, {unloading()});
-  recorder.stepper = &stepper;
-  StartState start;
-  start.displacement = Eigen::VectorXd::Zero(6);
-  start.displacement[3] = 256;
-  const RunSummary summary = stepper.run(start);
-  ASSERT_EQ(summary.outcome, RunSummary::Outcome::Completed) << summary.message;
-  EXPECT_EQ(summary.lineSearchRetries, 1);
-  EXPECT_EQ(summary.totalCutbacks, 0);
-  ASSERT_EQ(recorder.steps.size(), 4u);
-  for (int k = 0; k < 4; ++k) {
-    EXPECT_NEAR(recorder.steps[k].displacement[3], 256 / std::pow(4.0, k + 1), 1e-10);
-    // The line search kept shortening updates; a phase's end starts the next phase afresh.
-    if (k < 3) EXPECT_GT(recorder.next[k].lineSearchSteps, 0) << "step " << k + 1;
-  }
-  EXPECT_EQ(recorder.next[3].lineSearchSteps, 0);
-
-  for (const bool carried : {true, false}) {
-    SpringChain restarted = unloadingFromThePlateau();
-    RecordingObserver observer;
-    LoadStepper again(restarted, observer, {unloading()});
-    StartState from;
-    from.step = 2;
-    from.time = recorder.steps[1].time;
-    from.displacement = recorder.steps[1].displacement;
-    from.stepSize = recorder.next[1];
-    if (!carried) from.stepSize.lineSearchSteps = 0;
-    const RunSummary rest = again.run(from);
-    ASSERT_EQ(rest.outcome, RunSummary::Outcome::Completed) << rest.message;
-    EXPECT_EQ(rest.lineSearchRetries, carried ? 0 : 1);
-    ASSERT_EQ(observer.steps.size(), 2u);
-    EXPECT_EQ(observer.steps[0].iterations, recorder.steps[2].iterations);
-    EXPECT_LT(std::abs(observer.steps[1].displacement[3] - recorder.steps[3].displacement[3]),
-              1e-12);
   }
 }
 
