@@ -9,9 +9,13 @@ t = 0.2). Force: the total force of the first contact pair in the CSV (the die o
 issue 14's decks), or the slab_bottom reaction, signed so that the press is +z.
 """
 import csv
+import os
 import sys
 
-import h5py
+# Read-only summaries, several at once from the batch scripts' threads: h5py's file lock then
+# failed now and then with "unable to lock file" (errno 11) on finished files.
+os.environ.setdefault("HDF5_USE_FILE_LOCKING", "FALSE")
+import h5py  # noqa: E402
 
 
 def summarize(path):
