@@ -136,7 +136,7 @@ class ContactPair : public Contribution {
   // Restart (contact_pair_history.cpp): the committed history of every point and the search
   // state it continues from, one column of kHistoryRows numbers per point, and its
   // restoration. importHistory throws std::invalid_argument if the table does not fit the pair.
-  static constexpr int kHistoryRows = 23;
+  static constexpr int kHistoryRows = 27;
   Eigen::MatrixXd exportHistory() const;
   void importHistory(const Eigen::MatrixXd& table);
   const ContactPairConfig& config() const { return config_; }
@@ -198,6 +198,12 @@ class ContactPair : public Contribution {
   std::uint64_t evaluationPass_ = 0;
   // The pass at the last commit or restore: the next one evaluates the step's first iterate.
   std::uint64_t passAtStepStart_ = 0;
+  // The time of the last prepare() (at a commit: the converged time), and the times of the last
+  // two commits, t_n and t_(n-1), which the points' gap histories belong to.
+  double preparedTime_ = 0;
+  double gapTime_ = 0;
+  double previousGapTime_ = 0;
+  bool holdsClosedAtPrediction(const PointHistory& history, const AssemblyState& state) const;
   bool evaluatedThisPass(const PairPoint& point) const {
     return point.evaluatedInPass == evaluationPass_;
   }

@@ -32,8 +32,17 @@ enum HistoryRow : int {
   kMultiplierNormal = 20,
   kPenaltyNormal = 21,
   kPenaltyTangential = 22,
-  kRowCount = 23,
+  // The gap history (g_n, g_(n-1), kNoGap without a projection) and the times of those two commits
+  // (the same in every column), from which an extrapolated first iterate predicts the point's
+  // state (ContactPair::holdsClosedAtPrediction). Tables written before these rows existed
+  // have kRowCountBeforeGaps rows: no gap history, so no point is held in the first two steps.
+  kGap = 23,
+  kPreviousGap = 24,
+  kGapTime = 25,
+  kPreviousGapTime = 26,
+  kRowCount = 27,
   kLegacyRowCount = 20,
+  kRowCountBeforeGaps = 23,
 };
 static_assert(kRowCount == ContactPair::kHistoryRows);
 
@@ -69,6 +78,10 @@ Eigen::MatrixXd ContactPair::exportHistory() const {
     column[kMultiplierNormal] = point.committedMultiplierNormal;
     column[kPenaltyNormal] = builtPenaltyNormal_;
     column[kPenaltyTangential] = builtPenaltyTangential_;
+    column[kGap] = h.gap;
+    column[kPreviousGap] = h.previousGap;
+    column[kGapTime] = gapTime_;
+    column[kPreviousGapTime] = previousGapTime_;
   }
   return table;
 }
@@ -83,7 +96,9 @@ void ContactPair::importHistory(const Eigen::MatrixXd& table) {
         config_.name));
   }
   const bool legacy = table.rows() == kLegacyRowCount;
-  if ((table.rows() != kHistoryRows && !legacy) || table.cols() != pointCount()) {
+  const bool withGaps = table.rows() == kHistoryRows;
+  if ((!withGaps && !legacy && table.rows() != kRowCountBeforeGaps) ||
+      table.cols() != pointCount()) {
     throw std::invalid_argument(fmt::format(
         "contact pair '{}': history table is {} x {}, expected {} x {} (one column per point)",
         config_.name, table.rows(), table.cols(), kHistoryRows, pointCount()));
@@ -112,6 +127,8 @@ void ContactPair::importHistory(const Eigen::MatrixXd& table) {
     h.surfaceOffset = column.segment<3>(kSurfaceOffset);
     h.state = stateFrom(column[kState], config_.name, i);
     h.accumulatedSlip = column[kAccumulatedSlip];
+    h.gap = withGaps ? column[kGap] : kNoGap;
+    h.previousGap = withGaps ? column[kPreviousGap] : kNoGap;
     if (segmentBased) point.segment = static_cast<int>(column[kSearchSegment]);
     point.xi = column.segment<2>(kSearchXi);
     point.committedSearchSegment = point.segment;
@@ -120,6 +137,8 @@ void ContactPair::importHistory(const Eigen::MatrixXd& table) {
     point.trial = PointTrial{};
     buildItem(point);
   }
+  gapTime_ = withGaps && pointCount() > 0 ? table(kGapTime, 0) : 0.0;
+  previousGapTime_ = withGaps && pointCount() > 0 ? table(kPreviousGapTime, 0) : 0.0;
   // The history replaces the initial projection (Table 1, step 1), and the search grid and the
   // item topology follow the restored segments.
   historyInitialized_ = true;

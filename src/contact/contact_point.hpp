@@ -13,6 +13,7 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <limits>
 
 #include "contact/friction_law.hpp"
 #include "contact/geometry.hpp"
@@ -73,6 +74,10 @@ struct PointLayout {
 static_assert(kMaxItemNodes == 3 * std::tuple_size_v<decltype(PointLayout::slaveLocal)> &&
               kMaxItemNodes == 3 * std::tuple_size_v<decltype(PointLayout::masterLocal)>);
 
+// The gap recorded for a converged step at which the point had no projection: as if far open
+// (finite, so that the restart data stay finite).
+inline constexpr double kNoGap = std::numeric_limits<double>::max();
+
 // History of a contact point, committed only when a step converges (DESIGN.md).
 struct PointHistory {
   bool projected = false;  // a projection existed at the last converged step
@@ -89,9 +94,17 @@ struct PointHistory {
   // vector added to the trial traction by eq. (51) (zero for the paper's penalty).
   double multiplierNormal = 0;
   Eigen::Vector3d tractionAugmentation = Eigen::Vector3d::Zero();
+  // The gaps of the last two converged steps, g_n and g_(n-1) (kNoGap where the point had no
+  // projection): the gap history that predicts the point's contact state at an extrapolated
+  // first iterate (ContactPair::holdsClosedAtPrediction).
+  double gap = kNoGap;
+  double previousGap = kNoGap;
   // Set per evaluation, not committed: this is the step's first iterate (the first evaluation
   // after a commit or a restore), where returnMapping keeps sliding points sliding in a band.
   bool stepStart = false;
+  // Set per evaluation, not committed: at this (extrapolated, first) iterate the point keeps
+  // the penalty branch N = eps_N g also where g > 0.
+  bool heldClosed = false;
 };
 
 template <class Scalar>
@@ -141,8 +154,11 @@ PointResponse<Scalar> pointResponse(const PointKinematics<Scalar>& kin, const Po
                                     const LawParameters& law) {
   PointResponse<Scalar> response;
   if (history.multiplierNormal == 0) {
-    if (kin.gap > 0) return response;  // open: g > 0, no traction (Table 1, loop 3)
-    response.normal = normalTraction(kin.gap, law.penaltyNormal);
+    // Open: g > 0, no traction (Table 1, loop 3); a held point keeps N = eps_N g there, a small
+    // tension for one iterate (ContactPair::holdsClosedAtPrediction).
+    if (kin.gap > 0 && !history.heldClosed) return response;
+    response.normal = history.heldClosed ? Scalar(law.penaltyNormal * kin.gap)
+                                         : normalTraction(kin.gap, law.penaltyNormal);
   } else {  // augmented Lagrangian: open where lambda_N + eps_N g > 0
     response.normal = augmentedNormalTraction(kin.gap, law.penaltyNormal, history.multiplierNormal);
     if (response.normal == 0) return response;

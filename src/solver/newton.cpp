@@ -292,6 +292,7 @@ NewtonResult Newton::solve(const NewtonStep& step, const NewtonSpec& spec,
   for (int iteration = 1; iteration <= spec.maxIterations; ++iteration) {
     Eigen::VectorXd rhs;
     ContactChanges changes;
+    const bool predictedIterate = extrapolatedStart_;
     try {
       assembleAt(displacement, step, true);
       extrapolatedStart_ = false;  // the first iterate's assembly is the only one at the start
@@ -306,7 +307,10 @@ NewtonResult Newton::solve(const NewtonStep& step, const NewtonSpec& spec,
     } catch (const StepFailure& failure) {
       return failed(iteration, failure.kind(), failure.what());
     }
-    if (!spec.lineSearch && enteredCycle(activeSets, changes)) {
+    // An extrapolated first iterate's active set is a prediction (points held closed by their
+    // gap history, ContactPair::holdsClosedAtPrediction), not a state Newton passed through: the
+    // next iterates returning to it is no cycle.
+    if (!spec.lineSearch && !predictedIterate && enteredCycle(activeSets, changes)) {
       // The load stepper retries the step with the line search at once (load_stepper.cpp),
       // instead of after maxIterations iterations of the cycle.
       return failed(iteration - 1, FailureKind::Diverged,
