@@ -255,11 +255,16 @@ LocalStatus ContactPair::evaluateExactly(PairPoint& point, const PointSetup& set
 // displacements, stays closed (g_n + r (g_n - g_(n-1)) < 0, r = dt / dt_prev) keeps the penalty
 // branch N = eps_N g at the predicted iterate even where the predicted configuration opens it.
 // From the second iterate on the law is the paper's again, so a converged step is unchanged;
-// only Newton's path differs (docs/verification/sliding.md, twenty-second session). Penalty
-// enforcement only: the augmented Lagrangian's multipliers decide its active set.
+// only Newton's path differs (docs/verification/sliding.md, twenty-second session). Not in
+// the retry of a failed step (the safety net keeps the paper's law at every iterate), not
+// with the augmented Lagrangian (its multipliers decide its active set) and not with
+// integration=segments (its points are made anew every step, so they have no gap history).
 bool ContactPair::holdsClosedAtPrediction(const PointHistory& history,
                                           const AssemblyState& state) const {
-  if (!history.stepStart || !state.extrapolatedStart || config_.augmented) return false;
+  if (!history.stepStart || !state.extrapolatedStart || config_.augmented || retryingStep_ ||
+      config_.segmentIntegration) {
+    return false;
+  }
   if (history.state == ContactState::Open || !(history.previousGap <= 0)) return false;
   const double previousStep = gapTime_ - previousGapTime_;
   if (!(previousStep > 0)) return false;
@@ -341,6 +346,7 @@ void ContactPair::commitStep() {
     point.segmentChangesInStep = 0;
   }
   passAtStepStart_ = evaluationPass_;
+  retryingStep_ = false;
   previousGapTime_ = gapTime_;
   gapTime_ = preparedTime_;
   rememberedSearch_.clear();
@@ -352,6 +358,7 @@ void ContactPair::commitStep() {
 
 void ContactPair::restoreStep() {
   passAtStepStart_ = evaluationPass_;
+  retryingStep_ = true;
   rememberedSearch_.clear();
   forgetChangesInAttempt();
   restoreAugmentation();

@@ -204,6 +204,7 @@ class ContactPair : public Contribution {
   double gapTime_ = 0;
   double previousGapTime_ = 0;
   bool holdsClosedAtPrediction(const PointHistory& history, const AssemblyState& state) const;
+  bool retryingStep_ = false;  // restored since the last commit: a step's retry holds no point
   bool evaluatedThisPass(const PairPoint& point) const {
     return point.evaluatedInPass == evaluationPass_;
   }
