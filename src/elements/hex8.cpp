@@ -76,15 +76,23 @@ ElementStatus evaluateHex8(const Hex8Nodes& X, const Hex8Nodes& x, const Materia
   tl::StrainDisplacement<kNodes> B;
   Vector6d stress;
   Matrix6d materialTangent;
+  IsotropicTangentForm tangentForm;
+  const bool byForm = tangent != nullptr && material.hasIsotropicTangentForm();
   for (int g = 0; g < kHex8GaussPoints; ++g) {
     if (ElementStatus status = gaussPointKinematics(X, x, g, state); !status.ok()) return status;
-    if (!material.evaluate(state.strain, stress, tangent ? &materialTangent : nullptr)) {
+    if (!(byForm ? material.evaluateWithTangentForm(state.strain, stress, tangentForm)
+                 : material.evaluate(state.strain, stress, tangent ? &materialTangent : nullptr))) {
       return tl::materialFailure(g, state.strain);
     }
     tl::strainDisplacementMatrix<kNodes>(state.F, state.dNdX, B);
     tl::addInternalForce<kNodes>(B, stress, state.volume, fint);
     if (tangent != nullptr) {
-      tl::addMaterialStiffnessUpperBlocks<kNodes>(B, materialTangent, state.volume, *tangent);
+      if (byForm) {
+        tl::addMaterialStiffnessUpperBlocks<kNodes>(state.F, state.dNdX, tangentForm, state.volume,
+                                                    *tangent);
+      } else {
+        tl::addMaterialStiffnessUpperBlocks<kNodes>(B, materialTangent, state.volume, *tangent);
+      }
       tl::addGeometricStiffnessUpperBlocks<kNodes>(state.dNdX, stressFromVoigt(stress),
                                                    state.volume, *tangent);
     }

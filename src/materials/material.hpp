@@ -14,6 +14,17 @@ namespace cc {
 using Vector6d = Eigen::Matrix<double, 6, 1>;
 using Matrix6d = Eigen::Matrix<double, 6, 6>;
 
+// The tangent of an isotropic law in the form D = alpha A (x) A + 2 beta A (.) A, with A a
+// symmetric tensor and (A (.) A)_IJKL = (A_IK A_JL + A_IL A_JK) / 2 (St. Venant-Kirchhoff:
+// lambda, mu, I; neo-Hooke: lambda, mu - lambda ln J, C^-1). A Hex8 forms its material
+// stiffness from it node pair by node pair with 3-vectors, about half the arithmetic of
+// B_a^T D B_b (elements/kinematics_common.hpp; issue 13).
+struct IsotropicTangentForm {
+  double alpha = 0;
+  double beta = 0;
+  Eigen::Matrix3d A = Eigen::Matrix3d::Identity();
+};
+
 class Material {
  public:
   virtual ~Material() = default;
@@ -21,6 +32,13 @@ class Material {
   // Returns false if the strain is outside the law's domain (e.g. det C <= 0 for neo-Hooke).
   virtual bool evaluate(const Vector6d& strainVoigt, Vector6d& stressVoigt,
                         Matrix6d* tangent) const = 0;
+  // Laws whose tangent has the IsotropicTangentForm say so and return it with the stress (the
+  // same stress as evaluate(); false outside the law's domain).
+  virtual bool hasIsotropicTangentForm() const { return false; }
+  virtual bool evaluateWithTangentForm(const Vector6d& /*strainVoigt*/, Vector6d& /*stressVoigt*/,
+                                       IsotropicTangentForm& /*tangent*/) const {
+    return false;
+  }
   // Stored energy per unit reference volume W(E) (S = dW/dE), for the energy balance of a run
   // (docs/output-format.md, /steps/<n>/energy). NaN for a law without a stored energy.
   virtual double strainEnergy(const Vector6d& /*strainVoigt*/) const {

@@ -13,7 +13,8 @@ class StVenantKirchhoff final : public Material {
   StVenantKirchhoff(double youngsModulus, double poissonRatio)
       : youngsModulus_(youngsModulus),
         poissonRatio_(poissonRatio),
-        hooke_(hookeMatrix(lameParameters(youngsModulus, poissonRatio))) {}
+        lame_(lameParameters(youngsModulus, poissonRatio)),
+        hooke_(hookeMatrix(lame_)) {}
 
   std::string name() const override { return "svk"; }
 
@@ -22,6 +23,15 @@ class StVenantKirchhoff final : public Material {
                 Matrix6d* tangent) const override {
     stressVoigt.noalias() = hooke_ * strainVoigt;
     if (tangent != nullptr) *tangent = hooke_;
+    return true;
+  }
+
+  // D = lambda I (x) I + 2 mu I (.) I.
+  bool hasIsotropicTangentForm() const override { return true; }
+  bool evaluateWithTangentForm(const Vector6d& strainVoigt, Vector6d& stressVoigt,
+                               IsotropicTangentForm& tangent) const override {
+    stressVoigt.noalias() = hooke_ * strainVoigt;
+    tangent = {lame_.lambda, lame_.mu, Eigen::Matrix3d::Identity()};
     return true;
   }
 
@@ -36,6 +46,7 @@ class StVenantKirchhoff final : public Material {
  private:
   double youngsModulus_;
   double poissonRatio_;
+  LameParameters lame_;
   Matrix6d hooke_;
 };
 
