@@ -18,21 +18,10 @@ args = stress_script.parse_args()
 r = stress_script.run_ironing_steps(args, "ball_nts_stiff_mu0.deck", STEPS, folder="ball",
                                     must_contain=("contact nts", "predictor=extrapolate",
                                                   "ball_stiff.inc"))
-failures = []
-cutbacks = [line for line in (r.stdout + r.stderr).splitlines()
-            if line.startswith("cut-back at") and "retrying the step with line search" not in line]
-if cutbacks:
-    failures.append("cut-backs:\n" + "\n".join(cutbacks))
-if f"completed: {STEPS} steps" not in r.stdout:
-    failures.append(f"the run did not complete {STEPS} steps:\n" + r.stdout[-2000:])
-developed = [int(line.split()[7]) for line in r.stdout.splitlines()
-             if line.startswith("step ") and float(line.split()[4]) > 0.4 + 1e-9]
-if len(developed) != STEPS - 40:
-    failures.append(f"{len(developed)} developed steps in the log, expected {STEPS - 40}")
-elif sum(developed) / len(developed) > 4:
-    failures.append(f"{sum(developed) / len(developed):.2f} Newton iterations per developed step "
-                    "(target <= 4)")
-print(f"{sum(developed) / max(len(developed), 1):.2f} Newton iterations per developed step")
+failures, mean = stress_script.developed_sliding_failures(r, STEPS,
+                                                         allow_line_search_retries=True)
+if mean is not None:
+    print(f"{mean:.2f} Newton iterations per developed step")
 for f in failures:
     print("FAIL:", f)
 sys.exit(1 if failures else 0)

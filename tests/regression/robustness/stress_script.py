@@ -59,3 +59,29 @@ def run_ironing_steps(args, name, steps, must_contain=(), folder="ironing"):
     if r.returncode != 0:
         sys.exit(f"the run failed: exit {r.returncode}\n{r.stdout[-3000:]}{r.stderr[-2000:]}")
     return r
+
+
+def developed_sliding_failures(r, steps, allow_line_search_retries=False):
+    """What a run of run_ironing_steps() did against issue 14's targets: no cut-back (with
+    allow_line_search_retries, a retry of a step with the line search at the same step size is
+    not one), all `steps` steps completed, and at most 4 Newton iterations per developed step
+    (t > 0.4, 100 steps of dt = 0.01). Returns the failures and the mean iterations per
+    developed step (None if the log has the wrong number of developed steps)."""
+    failures = []
+    retry = "retrying the step with line search"
+    cutbacks = [line for line in (r.stdout + r.stderr).splitlines()
+                if line.startswith("cut-back at")
+                and not (allow_line_search_retries and retry in line)]
+    if cutbacks:
+        failures.append("cut-backs:\n" + "\n".join(cutbacks))
+    if f"completed: {steps} steps" not in r.stdout:
+        failures.append(f"the run did not complete {steps} steps:\n" + r.stdout[-2000:])
+    developed = [int(line.split()[7]) for line in r.stdout.splitlines()
+                 if line.startswith("step ") and float(line.split()[4]) > 0.4 + 1e-9]
+    if len(developed) != steps - 40:
+        failures.append(f"{len(developed)} developed steps in the log, expected {steps - 40}")
+        return failures, None
+    mean = sum(developed) / len(developed)
+    if mean > 4:
+        failures.append(f"{mean:.2f} Newton iterations per developed step (target <= 4)")
+    return failures, mean
