@@ -99,7 +99,10 @@ int main(int argc, char** argv) {
   runCommand
       ->add_option("--check-tangent", run.checkTangent,
                    "STEP:ITERATION: compare the assembled tangent with central differences of "
-                   "the residual at that iterate (printed to stderr)")
+                   "the residual at that iterate (printed to stderr). Use ITERATION >= 2 in "
+                   "contact runs: at a step's first iterate some points use a law of that "
+                   "iterate only (sliding kept, held closed at a prediction), which the "
+                   "differences do not see")
       ->check(CLI::Validator(
           [](std::string& value) {
             int step = 0, iteration = 0;
