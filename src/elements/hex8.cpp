@@ -84,17 +84,16 @@ ElementStatus evaluateHex8(const Hex8Nodes& X, const Hex8Nodes& x, const Materia
                  : material.evaluate(state.strain, stress, tangent ? &materialTangent : nullptr))) {
       return tl::materialFailure(g, state.strain);
     }
-    tl::strainDisplacementMatrix<kNodes>(state.F, state.dNdX, B);
-    tl::addInternalForce<kNodes>(B, stress, state.volume, fint);
-    if (tangent != nullptr) {
-      if (byForm) {
-        tl::addMaterialStiffnessUpperBlocks<kNodes>(state.F, state.dNdX, tangentForm, state.volume,
-                                                    *tangent);
-      } else {
-        tl::addMaterialStiffnessUpperBlocks<kNodes>(B, materialTangent, state.volume, *tangent);
-      }
-      tl::addGeometricStiffnessUpperBlocks<kNodes>(state.dNdX, stressFromVoigt(stress),
-                                                   state.volume, *tangent);
+    const Eigen::Matrix3d stressTensor = stressFromVoigt(stress);
+    tl::addInternalForce<kNodes>(state.F, state.dNdX, stressTensor, state.volume, fint);
+    if (byForm) {
+      tl::addStiffnessUpperBlocks<kNodes>(state.F, state.dNdX, tangentForm, stressTensor,
+                                          state.volume, *tangent);
+    } else if (tangent != nullptr) {
+      tl::strainDisplacementMatrix<kNodes>(state.F, state.dNdX, B);
+      tl::addMaterialStiffnessUpperBlocks<kNodes>(B, materialTangent, state.volume, *tangent);
+      tl::addGeometricStiffnessUpperBlocks<kNodes>(state.dNdX, stressTensor, state.volume,
+                                                   *tangent);
     }
   }
   if (tangent != nullptr) tl::mirrorUpperBlocks<kNodes>(*tangent);

@@ -183,7 +183,8 @@ class RejectingMaterial final : public cc::Material {
 
 // The material stiffness from the IsotropicTangentForm (3-vectors per node pair, issue 13) is the
 // B_a^T D B_b of the general path with the law's own 6x6 tangent, to round-off, at a large
-// strain of a distorted element; the stress of both evaluations is the same.
+// strain of a distorted element; the stress of both evaluations is the same. So are the one-pass
+// material + geometric stiffness and the internal force without B that Hex8 uses.
 TEST_P(Hex8WithMaterial, TangentFormGivesTheMaterialStiffnessOfTheVoigtTangent) {
   ASSERT_TRUE(material->hasIsotropicTangentForm());
   const cc::Hex8Nodes X = distortedElement();
@@ -207,6 +208,19 @@ TEST_P(Hex8WithMaterial, TangentFormGivesTheMaterialStiffnessOfTheVoigtTangent) 
   cc::tl::mirrorUpperBlocks<8>(general);
   cc::tl::mirrorUpperBlocks<8>(byForm);
   EXPECT_LT((byForm - general).norm(), kRoundOff * general.norm());
+  // The one-pass material + geometric stiffness and the internal force without B give the
+  // sums of the B path.
+  const Matrix3d S = cc::stressFromVoigt(stress);
+  cc::tl::addGeometricStiffnessUpperBlocks<8>(dNdX, S, 0.7, general);
+  cc::Hex8Matrix onePass = cc::Hex8Matrix::Zero();
+  cc::tl::addStiffnessUpperBlocks<8>(F, dNdX, form, S, 0.7, onePass);
+  cc::tl::mirrorUpperBlocks<8>(general);  // the lower blocks again, now with the geometric part
+  cc::tl::mirrorUpperBlocks<8>(onePass);
+  EXPECT_LT((onePass - general).norm(), kRoundOff * general.norm());
+  cc::Hex8Vector forceByB = cc::Hex8Vector::Zero(), forceByF = cc::Hex8Vector::Zero();
+  cc::tl::addInternalForce<8>(B, stress, 0.7, forceByB);
+  cc::tl::addInternalForce<8>(F, dNdX, S, 0.7, forceByF);
+  EXPECT_LT((forceByF - forceByB).norm(), kRoundOff * forceByB.norm());
 }
 
 TEST(Hex8Failures, ReportsInvertedReferenceAndCurrentConfigurations) {
