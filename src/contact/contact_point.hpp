@@ -124,6 +124,9 @@ struct PointKinematics {
 template <class Scalar>
 struct PointResponse {
   Scalar normal = Scalar(0.0);  // N
+  // The pressure that bounds friction, mu * compression: |N|, or -N continued through g = 0 for
+  // a point held closed at a prediction (negative where the prediction opens it).
+  Scalar compression = Scalar(0.0);
   TangentialTraction<Scalar> tangential;
   ContactState state = ContactState::Open;
   bool frictional = false;
@@ -163,6 +166,13 @@ PointResponse<Scalar> pointResponse(const PointKinematics<Scalar>& kin, const Po
     response.normal = augmentedNormalTraction(kin.gap, law.penaltyNormal, history.multiplierNormal);
     if (response.normal == 0) return response;
   }
+  // A held point continues the closed branch linearly, its friction bound too: mu |N| would
+  // grow as the prediction opens the point, so that the first update, linearized there, pushed
+  // its friction the wrong way (the stiff ball with NTS, mu = 0.3: the first update 5 times the
+  // step's whole correction, one iteration more per step than at mu = 0).
+  using std::abs;
+  response.compression =
+      history.heldClosed ? Scalar(-response.normal) : Scalar(abs(response.normal));
   response.state = ContactState::Stick;
   response.tangential.covariant.setZero();
   response.tangential.trialCovariant.setZero();
@@ -193,7 +203,7 @@ PointResponse<Scalar> pointResponse(const PointKinematics<Scalar>& kin, const Po
           kin.frame, Vec3<Scalar>(history.tractionAugmentation.cast<Scalar>()));
     }
     response.tangential =
-        returnMapping(kin.frame, trial, response.normal, law.friction, law.penaltyTangential,
+        returnMapping(kin.frame, trial, response.compression, law.friction, law.penaltyTangential,
                       history.state == ContactState::Slip, history.stepStart);
     response.state = response.tangential.state;
   }

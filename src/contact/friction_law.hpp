@@ -119,11 +119,13 @@ constexpr double kStepStartSlideBand = 0.1;
 // sliding step: the translated traction has exactly the magnitude mu |N|) both branches give the
 // same traction; a point that was sliding is then kept sliding, so that the first Newton
 // iteration of a sliding step uses the slide tangent instead of the stiff stick one. At the
-// step's first iterate (`stepStart`) the band is kStepStartSlideBand wide.
+// step's first iterate (`stepStart`) the band is kStepStartSlideBand wide. `compression` is
+// the normal pressure |N| (PointResponse::compression: negative only at a point held closed at
+// a prediction, whose friction then points against the trial traction, continued through N = 0).
 template <class Scalar>
 TangentialTraction<Scalar> returnMapping(const SurfaceFrame<Scalar>& frame,
                                          const Eigen::Matrix<Scalar, 2, 1>& trial,
-                                         const Scalar& normal, double friction,
+                                         const Scalar& compression, double friction,
                                          double penaltyTangential, bool wasSliding,
                                          bool stepStart = false) {
   using std::abs;
@@ -131,7 +133,7 @@ TangentialTraction<Scalar> returnMapping(const SurfaceFrame<Scalar>& frame,
   TangentialTraction<Scalar> result;
   result.trialCovariant = trial;
   result.trialNorm = tractionNorm(trial, frame.inverseMetric);
-  const Scalar limit = friction * abs(normal);
+  const Scalar limit = friction * compression;
   // A trial traction from a slip at round-off level of the coordinates is no slip: without this
   // tolerance a point touching with N = 0 (g = 0 at the start) would slide on noise in a random
   // direction and carry no tangential stiffness into the first Newton iteration.
@@ -139,8 +141,10 @@ TangentialTraction<Scalar> returnMapping(const SurfaceFrame<Scalar>& frame,
                        kConeTolerance * scalarValue(limit);
   const double excess = scalarValue(result.trialNorm) - scalarValue(limit);
   const double keepSliding = slack + (stepStart ? kStepStartSlideBand * scalarValue(limit) : 0.0);
+  // No slip direction without a trial traction (T^tr = 0 with a bound of zero or below).
   const bool slides =
-      excess > slack || (wasSliding && excess >= -keepSliding && scalarValue(limit) > 0);
+      scalarValue(result.trialNorm) > 0 &&
+      (excess > slack || (wasSliding && excess >= -keepSliding && scalarValue(limit) > 0));
   if (!slides) {
     result.state = ContactState::Stick;
     result.covariant = trial;

@@ -144,21 +144,22 @@ void tractionCurvature(const TangentContext& c, const Eigen::Vector2d& traction,
 // Eqs. (107), (107a), (107b), sign changed, with the trial traction's direction e and norm:
 // mu eps_N (A^T e)(A^T n)^T + eps_T mu |N| / ||T^tr|| [a^ij A^T rho_i (A^T rho_j)^T - A^T e (A^T
 // e)^T].
-void slideConstitutive(const TangentContext& c, const LawParameters& law, double normal,
+void slideConstitutive(const TangentContext& c, const LawParameters& law, double compression,
                        const TangentialTraction<double>& tangential, MatrixXd& K) {
   const Eigen::Vector2d direction = tangential.trialCovariant / tangential.trialNorm;
   const ItemVector Ae = direction[0] * c.ArhoContra[0] + direction[1] * c.ArhoContra[1];
   K.noalias() += (c.weight * law.friction * law.penaltyNormal) * Ae * c.Agap.transpose();
   const double scale =
-      c.weight * law.penaltyTangential * law.friction * std::abs(normal) / tangential.trialNorm;
+      c.weight * law.penaltyTangential * law.friction * compression / tangential.trialNorm;
   for (int i = 0; i < 2; ++i) K.noalias() += scale * c.ArhoContra[i] * c.Arho[i].transpose();
   K.noalias() -= scale * Ae * Ae.transpose();
 }
 
 // Eq. (107e), sign changed: -mu |N| / ||T^tr|| (A^T e) [-e^j T_m Gamma^m_jn A^T rho^n +
 // e^j T_m h_j^m A^T n]^T, with e^j = e_l a^jl and T the trial traction.
-void slideUnsymmetricCurvature(const TangentContext& c, const LawParameters& law, double normal,
-                               const TangentialTraction<double>& tangential, MatrixXd& K) {
+void slideUnsymmetricCurvature(const TangentContext& c, const LawParameters& law,
+                               double compression, const TangentialTraction<double>& tangential,
+                               MatrixXd& K) {
   const SurfaceFrame<double>& f = *c.frame;
   const Eigen::Vector2d direction = tangential.trialCovariant / tangential.trialNorm;
   const Eigen::Vector2d directionContra = f.inverseMetric * direction;
@@ -176,7 +177,7 @@ void slideUnsymmetricCurvature(const TangentContext& c, const LawParameters& law
   const ItemVector Ae = direction[0] * c.ArhoContra[0] + direction[1] * c.ArhoContra[1];
   const ItemVector right = -christoffelWeights[0] * c.ArhoContra[0] -
                            christoffelWeights[1] * c.ArhoContra[1] + curvatureWeight * c.An;
-  const double scale = c.weight * law.friction * std::abs(normal) / tangential.trialNorm;
+  const double scale = c.weight * law.friction * compression / tangential.trialNorm;
   K.noalias() -= scale * Ae * right.transpose();
 }
 
@@ -215,11 +216,12 @@ void paperTangent(const PointKinematics<double>& kin, const PointResponse<double
     if (parts.stickCurvature && curved) tractionCurvature(c, traction, K);
     return;
   }
-  if (parts.slideConstitutive) slideConstitutive(c, law, response.normal, response.tangential, K);
+  if (parts.slideConstitutive)
+    slideConstitutive(c, law, response.compression, response.tangential, K);
   if (parts.slideRotational) tractionRotational(c, traction, K);
   if (parts.slideCurvature && curved) tractionCurvature(c, traction, K);
   if (parts.slideUnsymmetricCurvature && connected) {
-    slideUnsymmetricCurvature(c, law, response.normal, response.tangential, K);
+    slideUnsymmetricCurvature(c, law, response.compression, response.tangential, K);
   }
 }
 

@@ -443,5 +443,46 @@ TEST(ContactPair, AnExtrapolatedIterateHoldsAPointClosedThatItsGapHistoryKeepsCl
   }
 }
 
+// A held point continues the closed branch linearly through g = 0, its friction too: at a
+// predicted iterate lifted by delta the held sliding point carries exactly the negative of the
+// force it carries at a penetration delta with the same slip, friction included. The bound
+// mu |N| instead grew as the point opened and pushed its friction the wrong way: the first
+// Newton update of the stiff ball with friction went 5 times too far (issue 14).
+TEST(ContactPair, AHeldSlidingPointContinuesTheClosedBranchFrictionIncluded) {
+  const double delta = 1e-4, friction = 0.3;
+  for (PointKind kind : {PointKind::SegmentToSegment, PointKind::NodeToSegment}) {
+    TwoSurfaces s = overlappingSquares(2e-3);
+    auto make = [&] {
+      return kind == PointKind::SegmentToSegment
+                 ? ContactPair::segmentToSegment(config(kind, friction), s.master, s.slave)
+                 : ContactPair::nodeToSegment(config(kind, friction), s.mesh, s.master, s.slave);
+    };
+    auto at = [&](double z, double slide) {  // the slave lowered to z and slid along x
+      Matrix3Xd x = s.mesh.coordinates;
+      for (int node = 9; node < 25; ++node) {
+        x(2, node) = z;
+        x(0, node) += slide;
+      }
+      return x;
+    };
+    auto pair = make();
+    const Matrix3Xd first = at(-2e-3, 0.0), second = at(-1.5e-3, 0.01);
+    (void)assembleForce(*pair, first, s.mesh.coordinates, 1);
+    pair->commitStep();
+    (void)assembleForce(*pair, second, first, 2);  // eps_T 0.01 = 10 > mu |N|: sliding
+    pair->commitStep();
+    auto predicted = [&](double z) {
+      auto fresh = make();
+      fresh->importHistory(pair->exportHistory());
+      return assembleForce(*fresh, at(z, 0.02), second, 3, true);
+    };
+    const Eigen::VectorXd closed = predicted(-delta), held = predicted(delta);
+    double tangential = 0;
+    for (int node = 9; node < 25; ++node) tangential += std::abs(closed[3 * node]);
+    EXPECT_GT(tangential, 0.5 * friction * 1e3 * delta * 4.0);  // friction acts: mu eps_N g A
+    EXPECT_LT((held + closed).norm(), 1e-12 * closed.norm());
+  }
+}
+
 }  // namespace
 }  // namespace cc::contact
