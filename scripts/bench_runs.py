@@ -5,6 +5,7 @@ that runs on a shared, loaded machine can be judged by CPU time as well. Used by
 import csv
 import json
 import os
+import re
 import shutil
 import signal
 import subprocess
@@ -181,10 +182,39 @@ class Runner:
             ours["summary"] = ours.pop("stdout").strip().splitlines()[-1:]
             ours["curve"], ours["iterations"] = read_reactions_csv(
                 os.path.join(cwd, "run_reactions.csv"), "block_top")
+            # The same deck with the extrapolating predictor (CalculiX starts each increment
+            # from the last one's velocity): a user's choice for a steady slide, at the same
+            # convergence criterion.
+            variant = extrapolating_deck(deck, os.path.join(cwd, "extrapolate.deck"))
+            print(f"bench: covcontact run {deck} with predictor=extrapolate", flush=True)
+            extrapolating = measure([self.covcontact, "run", variant, "-o", "extrapolate.h5",
+                                     "--threads", str(threads)], cwd, env, self.limit_seconds,
+                                    self.limit_bytes)
+            extrapolating["summary"] = extrapolating.pop("stdout").strip().splitlines()[-1:]
+            extrapolating["curve"], extrapolating["iterations"] = read_reactions_csv(
+                os.path.join(cwd, "extrapolate_reactions.csv"), "block_top")
             comparisons.append({"mesh": name, "threads": threads, "calculix": ccx,
-                                "covcontact": ours})
+                                "covcontact": ours, "covcontact_extrapolate": extrapolating})
             shutil.rmtree(cwd, ignore_errors=True)
         return comparisons
+
+
+def extrapolating_deck(deck, path):
+    """Writes `deck` with `newton predictor=extrapolate` in its solve block to `path` (the
+    mesh path made absolute) and returns `path`."""
+    base = os.path.dirname(os.path.abspath(deck))
+    lines = []
+    with open(deck) as stream:
+        for line in stream:
+            match = re.match(r'(\s*mesh\s+)"([^"]+)"(.*)', line)
+            if match and not os.path.isabs(match.group(2)):
+                line = f'{match.group(1)}"{os.path.join(base, match.group(2))}"{match.group(3)}\n'
+            lines.append(line)
+            if line.strip() == "solve":
+                lines.append("  newton predictor=extrapolate\n")
+    with open(path, "w") as out:
+        out.writelines(lines)
+    return path
 
 
 def read_reactions_csv(path, node_set):
