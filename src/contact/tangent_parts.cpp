@@ -143,7 +143,8 @@ void tractionCurvature(const TangentContext& c, const Eigen::Vector2d& traction,
 
 // Eqs. (107), (107a), (107b), sign changed, with the trial traction's direction e and norm:
 // mu eps_N (A^T e)(A^T n)^T + eps_T mu |N| / ||T^tr|| [a^ij A^T rho_i (A^T rho_j)^T - A^T e (A^T
-// e)^T].
+// e)^T]. |N| is PointResponse::compression here and in (107e): -N at a point held closed at a
+// prediction, whose first term then stays the closed branch's continuation.
 void slideConstitutive(const TangentContext& c, const LawParameters& law, double compression,
                        const TangentialTraction<double>& tangential, MatrixXd& K) {
   const Eigen::Vector2d direction = tangential.trialCovariant / tangential.trialNorm;
