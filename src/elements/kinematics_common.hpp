@@ -106,33 +106,12 @@ void addMaterialStiffnessUpperBlocks(const StrainDisplacement<N>& B, const Matri
   }
 }
 
-// The same material part for a tangent D = alpha A (x) A + 2 beta A (.) A
-// (IsotropicTangentForm): with dE = sym(F^T du_a dN_a^T) and g_a = F A dN_a,
-// K_ab += [alpha g_a g_b^T + beta ((dN_a . A dN_b) F A F^T + g_b g_a^T)] dV. Per node pair two
-// 3x3 outer products and a scaled 3x3 matrix instead of B_a^T (D B_b); F and dN as in
+// Material and geometric parts in one pass over the node pairs, for a material tangent
+// D = alpha A (x) A + 2 beta A (.) A (IsotropicTangentForm): with dE = sym(F^T du_a dN_a^T) and
+// g_a = F A dN_a, K_ab += [alpha g_a g_b^T + beta ((dN_a . A dN_b) F A F^T + g_b g_a^T)
+// + (dN_a . S dN_b) I] dV. Per node pair two 3x3 outer products, a scaled 3x3 matrix and a
+// diagonal instead of B_a^T (D B_b) plus addGeometricStiffnessUpperBlocks(); F and dN as in
 // strainDisplacementMatrix().
-template <int N>
-void addMaterialStiffnessUpperBlocks(const Eigen::Matrix3d& F, const ShapeGradients<N>& dN,
-                                     const IsotropicTangentForm& D, double volume,
-                                     ElementMatrix<N>& K) {
-  const Eigen::Matrix3d FA = F * D.A;
-  const Eigen::Matrix<double, 3, N> g = FA * dN.transpose();
-  const Eigen::Matrix<double, 3, N> alphaG = (volume * D.alpha) * g;
-  const Eigen::Matrix<double, 3, N> betaG = (volume * D.beta) * g;
-  const Eigen::Matrix3d FAFt = (volume * D.beta) * (FA * F.transpose());
-  const Eigen::Matrix<double, N, 3> dNA = dN * D.A;
-  for (int b = 0; b < N; ++b) {
-    for (int a = 0; a <= b; ++a) {
-      K.template block<3, 3>(3 * a, 3 * b).noalias() += alphaG.col(a) * g.col(b).transpose() +
-                                                        betaG.col(b) * g.col(a).transpose() +
-                                                        dNA.row(a).dot(dN.row(b)) * FAFt;
-    }
-  }
-}
-
-// Material and geometric parts in one pass over the node pairs, for a tangent of the form
-// above: K_ab += [alpha g_a g_b^T + beta ((dN_a . A dN_b) F A F^T + g_b g_a^T)
-// + (dN_a . S dN_b) I] dV. The same sums as the two separate functions, one loop instead of two.
 template <int N>
 void addStiffnessUpperBlocks(const Eigen::Matrix3d& F, const ShapeGradients<N>& dN,
                              const IsotropicTangentForm& D, const Eigen::Matrix3d& stress,
