@@ -34,6 +34,29 @@ constexpr hsize_t kTableChunkRows = 512;
 constexpr H5F_libver_t kFormatLowBound = H5F_LIBVER_V18;
 constexpr H5F_libver_t kFormatHighBound = H5F_LIBVER_V18;
 
+// The writer flushes after every Newton iteration and step, so that a run that stops keeps its
+// history on disk. HDF5 1.10's flush walks every entry of the metadata cache, which by default
+// grows to 32 MiB and keeps the headers of every step group written: at 600 steps of example
+// 6.1 the flushes took 16 % of the run (4.7 of 28.8 CPU s, growing with the step count). A
+// step's own metadata is a few kilobytes whatever the mesh size (its datasets are contiguous),
+// so a fixed cache of 256 KiB holds what the next step touches and the flush stays cheap: 1.1 s
+// at 600 steps. (HDF5's evict-on-close would do it too, but the MPI build refuses it.)
+constexpr std::size_t kMetadataCacheBytes = 256 * 1024;
+
+void limitMetadataCache(hid_t access, const std::string& path) {
+  H5AC_cache_config_t cache;
+  cache.version = H5AC__CURR_CACHE_CONFIG_VERSION;
+  h5::checkStatus(H5Pget_mdc_config(access, &cache), path, "configuring the metadata cache");
+  cache.set_initial_size = true;
+  cache.initial_size = kMetadataCacheBytes;
+  cache.max_size = kMetadataCacheBytes;
+  cache.min_size = std::min(cache.min_size, kMetadataCacheBytes);
+  cache.incr_mode = H5C_incr__off;
+  cache.flash_incr_mode = H5C_flash_incr__off;
+  cache.decr_mode = H5C_decr__off;
+  h5::checkStatus(H5Pset_mdc_config(access, &cache), path, "configuring the metadata cache");
+}
+
 // replacedByRename: the file is rewritten as a temporary renamed over it (the XDMF), which needs
 // a writable directory even when the file itself exists and is writable.
 void probeWritable(const fs::path& path, const char* what, bool replacedByRename) {
@@ -246,6 +269,7 @@ void ResultsWriter::open(const std::string& path, const RunInfo& info, const Mes
   }
   h5::checkStatus(H5Pset_libver_bounds(access.get(), kFormatLowBound, kFormatHighBound), path,
                   "choosing the file format");
+  limitMetadataCache(access.get(), path);
   // Our flock (above) excludes other writers; HDF5's own flock would conflict with it.
   h5::checkStatus(H5Pset_file_locking(access.get(), false, true), path, "opening the file");
   state->file =
