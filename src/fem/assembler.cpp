@@ -67,6 +67,16 @@ struct LocalBuffers {
   std::vector<int> rowOffsets;     // each local node's first row within a block column
 };
 
+// Whether every entry is finite: x * 0 is NaN exactly for an infinite or NaN x, and the sum of
+// the products is NaN exactly if one of them is. Eigen's allFinite() compares entry by entry in
+// a scalar loop, which took a quarter of the scatter's time on example 6.1 (24 x 24 element
+// matrices); the sum is vectorized.
+template <class Derived>
+bool allFinite(const Eigen::DenseBase<Derived>& values) {
+  const double probe = (values.derived().array() * 0.0).sum();
+  return probe == probe;
+}
+
 // The first failure one thread met (items are visited in ascending order within a color).
 struct ItemFailure {
   bool failed = false;
@@ -238,7 +248,7 @@ void Assembler::Impl::evaluateItem(Contribution& contribution, std::size_t item,
     buffers.failure.record(item, status.kind, std::move(status.detail));
     return;
   }
-  if (!local.force.allFinite() || (tangent && !local.tangent.allFinite())) {
+  if (!allFinite(local.force) || (tangent && !allFinite(local.tangent))) {
     buffers.failure.record(item, FailureKind::NotFinite, "non-finite local force or tangent");
     return;
   }

@@ -152,6 +152,8 @@ class ListContribution : public Contribution {
   std::uint64_t version = 1;
   std::set<std::size_t> failing;  // items that report a failure
   std::size_t nanItem = std::numeric_limits<std::size_t>::max();
+  std::size_t infiniteTangentItem = std::numeric_limits<std::size_t>::max();
+  double tangentScale = 1.0;  // entries of the identity tangent
   bool symmetric = true;
 
   std::string name() const override { return "list"; }
@@ -166,7 +168,11 @@ class ListContribution : public Contribution {
     }
     force.setOnes();
     if (item == nanItem) force[0] = std::numeric_limits<double>::quiet_NaN();
-    if (tangent) tangent->setIdentity();
+    if (tangent) {
+      tangent->setIdentity();
+      *tangent *= tangentScale;
+      if (item == infiniteTangentItem) (*tangent)(1, 4) = -std::numeric_limits<double>::infinity();
+    }
     return LocalStatus::success();
   }
 };
@@ -243,6 +249,26 @@ TEST(Assembler, NonFiniteLocalForceIsCaughtAndNamed) {
     EXPECT_EQ(failure.kind(), FailureKind::NotFinite);
     EXPECT_NE(std::string(failure.what()).find("list item 2"), std::string::npos);
   }
+}
+
+TEST(Assembler, InfiniteTangentEntryIsCaughtButHugeFiniteOnesAreNot) {
+  ListFixture fixture;
+  fixture.list.infiniteTangentItem = 1;
+  Assembler assembler(fixture.dofs, {&fixture.list});
+  Eigen::VectorXd force;
+  SystemMatrices matrices;
+  EXPECT_NO_THROW(assembler.assemble(fixture.state, force, nullptr));  // no tangent asked
+  try {
+    assembler.assemble(fixture.state, force, &matrices);
+    FAIL() << "expected StepFailure";
+  } catch (const StepFailure& failure) {
+    EXPECT_EQ(failure.kind(), FailureKind::NotFinite);
+    EXPECT_NE(std::string(failure.what()).find("list item 1"), std::string::npos);
+  }
+  // Entries whose sum would overflow are finite all the same.
+  fixture.list.infiniteTangentItem = std::numeric_limits<std::size_t>::max();
+  fixture.list.tangentScale = 0.9 * std::numeric_limits<double>::max();
+  EXPECT_NO_THROW(assembler.assemble(fixture.state, force, &matrices));
 }
 
 TEST(Assembler, SymmetryFlagIsTheAndOfAllContributions) {
