@@ -46,6 +46,12 @@ constexpr double kReferenceItemCpuSeconds = 6e-6;
 // confuses patterns of two assemblers.
 std::atomic<std::uint64_t> nextPatternVersion{1};
 
+}  // namespace
+
+// Types that Assembler::Impl's members hold: in a named namespace, since an anonymous one gives
+// Impl members of internal linkage (-Wsubobject-linkage in the unity build).
+namespace assembly_buffers {
+
 // Identity of an item list: the pattern and coloring follow it.
 struct TopologyKey {
   std::uint64_t version = 0;
@@ -115,6 +121,17 @@ struct ThreadBuffers {
     return local;
   }
 };
+
+}  // namespace assembly_buffers
+
+namespace {
+
+using assembly_buffers::allFinite;
+using assembly_buffers::ItemFailure;
+using assembly_buffers::LocalBuffers;
+using assembly_buffers::ThreadBuffers;
+using assembly_buffers::TopologyKey;
+using assembly_buffers::topologyOf;
 
 // Where each local node's rows start in the block columns of one column node. Every column of a
 // node, free (in `free`) or prescribed (in `coupling`), has the same rows: the free equations
