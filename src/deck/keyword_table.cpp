@@ -335,7 +335,7 @@ KeywordDecl solveKeyword() {
                          boolValue("reuse_factor",
                                    "solve a tangent by GMRES preconditioned by the CHOLMOD or "
                                    "UMFPACK factor of an earlier tangent of the same Newton "
-                                   "solve, factorizing when that needs more than 20 iterations "
+                                   "solve, factorizing when that needs more than 40 iterations "
                                    "(no: factorize every tangent); default yes, no in a deck "
                                    "with an enforcement=augmented pair")},
           .notes = "A deck has exactly one solve block with at least one `steps` line.",

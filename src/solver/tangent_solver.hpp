@@ -50,7 +50,10 @@ inline constexpr Eigen::Index kUnsymmetricMumpsBreakEven = 12000;
 // tangent is factorized after all. Each costs a triangular solve with the factor and a product
 // with the tangent: on the ironing die model (4 464 equations) ~2 ms against ~45 ms for a
 // factorization and ~10 ms for its refined solve, on example 6.1 (2 032) ~0.13 against ~5.
-inline constexpr int kReusedFactorIterations = 20;
+// 40 (and a new factor after a solve that needed more than 20) against 20 (10): the die model
+// 1-11 % less CPU time in five pairs run alternately (twenty-third and twenty-fourth sessions),
+// 6.1 2-3 % in three, the same Newton iterations (docs/performance/solvers.md).
+inline constexpr int kReusedFactorIterations = 40;
 
 class TangentSolver {
  public:

@@ -335,7 +335,7 @@ TEST(TangentSolver, LaterTangentsAreSolvedWithTheFirstFactorToTheReuseTolerance)
   EXPECT_EQ(work.solves, 6);
   // A 1e-3 change leaves a few GMRES iterations per solve, well inside the allowance.
   EXPECT_GE(work.krylovIterations, 5);
-  EXPECT_LE(work.krylovIterations, 5 * kReusedFactorIterations / 2);
+  EXPECT_LE(work.krylovIterations, 5 * 10);
   EXPECT_EQ(solver.activeBackend(), "CHOLMOD");  // the factor that served them all
 }
 
