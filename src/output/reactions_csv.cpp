@@ -65,10 +65,11 @@ void ReactionsCsv::appendStep(const StepRecord& step) {
   std::string row = std::to_string(step.step) + "," + formatNumber(step.time) + "," +
                     std::to_string(step.iterations);
   for (const auto& [set, force] : step.setReactions)
-    for (int axis = 0; axis < 3; ++axis) row += "," + formatNumber(force[axis]);
+    for (int axis = 0; axis < 3; ++axis) row.append(",").append(formatNumber(force[axis]));
   if (withContact_)
     for (const ContactPairRecord& pair : step.contact)
-      for (int axis = 0; axis < 3; ++axis) row += "," + formatNumber(pair.totalForce[axis]);
+      for (int axis = 0; axis < 3; ++axis)
+        row.append(",").append(formatNumber(pair.totalForce[axis]));
   write(row + "\n");
 }
 

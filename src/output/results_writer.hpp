@@ -37,7 +37,7 @@ struct RunTotals {
   std::string message;
   // The linear solver: what `solver=` resolved to, Krylov iterations over the run and the
   // Krylov solves redone with a direct solver (0 for direct solvers).
-  std::string linearSolver;
+  std::string linearSolver{};
   long krylovIterations = 0;
   int krylovFallbacks = 0;
   int lineSearchRetries = 0;    // failed plain-Newton attempts retried with line search

@@ -42,7 +42,7 @@ std::string columnsAsRows(const Matrix& matrix) {
   for (Eigen::Index col = 0; col < matrix.cols(); ++col) {
     out += col == 0 ? "[" : ",[";
     for (Eigen::Index row = 0; row < matrix.rows(); ++row)
-      out += (row == 0 ? "" : ",") + number(static_cast<double>(matrix(row, col)));
+      out.append(row == 0 ? "" : ",").append(number(static_cast<double>(matrix(row, col))));
     out += "]";
   }
   return out + "]";
@@ -52,7 +52,7 @@ template <class Vector>
 std::string list(const Vector& vector) {
   std::string out = "[";
   for (Eigen::Index i = 0; i < vector.size(); ++i)
-    out += (i == 0 ? "" : ",") + number(static_cast<double>(vector(i)));
+    out.append(i == 0 ? "" : ",").append(number(static_cast<double>(vector(i))));
   return out + "]";
 }
 
@@ -75,12 +75,13 @@ std::string stepJson(int step) {
   const StepRecord& record = data.record;
   std::string names = "[", forces = "[";
   for (const auto& [name, force] : record.setReactions) {
-    names += (names.size() > 1 ? "," : "") + quoted(name);
-    forces += (forces.size() > 1 ? "," : "") + list(force);
+    names.append(names.size() > 1 ? "," : "").append(quoted(name));
+    forces.append(forces.size() > 1 ? "," : "").append(list(force));
   }
   std::string contact = "{";
   for (const ContactPairRecord& pair : record.contact)
-    contact += (contact.size() > 1 ? "," : "") + quoted(pair.name) + ":" + contactJson(pair);
+    contact.append(contact.size() > 1 ? "," : "")
+        .append(quoted(pair.name) + ":" + contactJson(pair));
   return "{\"step\":" + std::to_string(step) + ",\"time\":" + number(record.time) +
          ",\"iterations\":" + std::to_string(record.iterations) +
          ",\"cutbacks\":" + std::to_string(record.cutbacks) +
