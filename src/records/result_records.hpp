@@ -114,7 +114,7 @@ struct IterationRecord {
   double relativeResidual = 0;
   double energy = 0;
   double relativeEnergy = 0;
-  double wallSeconds = 0;  // since the start of the run
+  double wallSeconds = 0;    // since the start of the run
   ContactChanges contact{};  // since the previous iteration (iteration 1: since the last step's)
 };
 
