@@ -12,6 +12,7 @@ import subprocess
 import time
 
 import bench_calculix
+import ironing_predictor
 
 POLL_SECONDS = 0.25
 
@@ -200,20 +201,16 @@ class Runner:
 
 
 def extrapolating_deck(deck, path):
-    """Writes `deck` with `newton predictor=extrapolate` in its solve block to `path` (the
-    mesh path made absolute) and returns `path`."""
+    """Writes `deck` with `newton predictor=extrapolate` in its solve block
+    (ironing_predictor.with_predictor, as the issue 14 tables run it) to `path`, the mesh path
+    made absolute, and returns `path`."""
     base = os.path.dirname(os.path.abspath(deck))
-    lines = []
     with open(deck) as stream:
-        for line in stream:
-            match = re.match(r'(\s*mesh\s+)"([^"]+)"(.*)', line)
-            if match and not os.path.isabs(match.group(2)):
-                line = f'{match.group(1)}"{os.path.join(base, match.group(2))}"{match.group(3)}\n'
-            lines.append(line)
-            if line.strip() == "solve":
-                lines.append("  newton predictor=extrapolate\n")
+        text = re.sub(r'^(\s*mesh\s+)"([^"/][^"]*)"',
+                      lambda m: f'{m.group(1)}"{os.path.join(base, m.group(2))}"', stream.read(),
+                      flags=re.M)
     with open(path, "w") as out:
-        out.writelines(lines)
+        out.write(ironing_predictor.with_predictor(text))
     return path
 
 
