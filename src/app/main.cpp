@@ -1,7 +1,6 @@
 // The `covcontact` command: parses the command line (CLI11) and dispatches to run, check and
 // compare. Exit codes are listed in --help and in common/errors.hpp.
 #include <fmt/format.h>
-#include <unistd.h>
 
 #include <CLI/CLI.hpp>
 #include <csignal>
@@ -11,10 +10,10 @@
 #include <limits>
 #include <string>
 
-#include "app/blas_environment.hpp"
 #include "app/commands.hpp"
 #include "app/heap_policy.hpp"
 #include "app/openmp_environment.hpp"
+#include "app/run_environment.hpp"
 #include "app/stop_signals.hpp"
 #include "common/errors.hpp"
 #include "deck/spec_choices.hpp"
@@ -59,16 +58,6 @@ CLI::Validator wholeNumberFromOne() {
                            std::numeric_limits<int>::max(), text);
       },
       "INT>=1");
-}
-
-// Started directly rather than through the `covcontact` launcher (app/launcher.cpp), the
-// program puts the OpenMP settings and BLAS kernels of a run into the environment itself and
-// re-executes itself once with them (libgomp and OpenBLAS read them only when they are loaded).
-void applyRunEnvironment(char** argv, int threads) {
-  const bool openMp = cc::app::setOpenMpEnvironment(threads);
-  const bool blas = cc::app::setBlasEnvironment();
-  if (openMp || blas) execv("/proc/self/exe", argv);
-  // exec failed (no /proc): go on with the defaults
 }
 
 }  // namespace
@@ -200,7 +189,9 @@ int main(int argc, char** argv) {
 
   if (*runCommand) {
     run.threads = cc::app::runThreads(run.threads);
-    applyRunEnvironment(argv, run.threads);
+    // Started directly rather than through the `covcontact` launcher (app/launcher.cpp), the
+    // program sets a run's OpenMP settings and BLAS kernels itself and re-executes itself.
+    cc::app::applyRunEnvironment(argv, run.threads);
   }
   cc::app::keepFreedMemory();  // small models; a run of a large one returns it (heap_policy)
   try {

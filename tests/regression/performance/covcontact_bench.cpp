@@ -1,5 +1,7 @@
 // covcontact_bench: runs a deck exactly as `covcontact run` does (parse, mesh, model, load
-// stepping, HDF5 results) and prints one JSON object with the cost split of the run: element
+// stepping, HDF5 results; the same OpenMP settings, BLAS kernels and heap policy, from
+// app/run_environment.hpp and app/heap_policy.hpp) and prints one JSON object with the cost
+// split of the run: element
 // assembly, contact search, contact kernel, pattern rebuilds, linear-solver analysis,
 // factorization and solve, output, and the work counters. scripts/bench.py drives it.
 //
@@ -31,6 +33,9 @@
 #include <optional>
 #include <string>
 
+#include "app/heap_policy.hpp"
+#include "app/openmp_environment.hpp"
+#include "app/run_environment.hpp"
 #include "common/errors.hpp"
 #include "deck/deck_parser.hpp"
 #include "deck/spec_choices.hpp"
@@ -259,6 +264,7 @@ int run(const Options& options) {
                                : options.output;
   const cc::OutputSelection selection = cc::outputSelection(spec.output);
   std::unique_ptr<cc::Model> model = cc::buildModel(spec);
+  cc::app::chooseHeapPolicy(static_cast<std::size_t>(model->dofMap().numFree()));
   const double setupSeconds = secondsSince(start);
 
   cc::ResultsWriter writer;
@@ -323,8 +329,16 @@ int run(const Options& options) {
 int main(int argc, char** argv) {
   try {
     const Options options = parseOptions(argc, argv);
-    if (options.orderings) return compareOrderings(options);
-    return options.search ? timeSearch(options) : run(options);
+    // The search timing runs alone (and under callgrind, where a re-execution would leave the
+    // instrumented process).
+    if (options.search) return timeSearch(options);
+    // As the engine: the run's OpenMP settings and BLAS kernels (one re-execution), then the
+    // heap that keeps freed memory for small models. Without them this driver ran OpenBLAS's
+    // fallback kernels on CPUs OpenBLAS does not know, and mmap-ed UMFPACK's workspace anew at
+    // every factorization (docs/performance/solvers.md, twenty-fifth session).
+    cc::app::applyRunEnvironment(argv, cc::app::runThreads(options.threads));
+    cc::app::keepFreedMemory();
+    return options.orderings ? compareOrderings(options) : run(options);
   } catch (const cc::InputError& error) {
     std::cerr << error.what() << "\n";
     return 2;

@@ -9,6 +9,9 @@ environment and executes covcontact-engine in its own place, so that the program
       core type of this CPU's instruction sets (/proc/cpuinfo), and a user's own is kept.
   --case missing_program: the launcher alone, without the engine beside it, says which file it
       could not start and exits 70 (an incomplete installation is an internal error).
+  --case bench_driver: the benchmark driver (tests/regression/performance/covcontact_bench,
+      which scripts/bench.py runs) re-executes itself with the same OpenMP settings and
+      OPENBLAS_CORETYPE as the engine, so that benchmarks measure the program users run.
 """
 import argparse
 import os
@@ -134,6 +137,42 @@ def environment_case(args):
     print("a user's OPENBLAS_CORETYPE=Sandybridge is kept")
 
 
+def bench_driver_case(args):
+    deck = os.path.join(args.scratch, "ironing_die.deck")
+    open(deck, "w").write(stress_script.ironing_deck_text(args, "ironing_sts_mu03_wide.deck"))
+    environment = {k: v for k, v in os.environ.items()
+                   if not k.startswith("OMP_") and k != "OPENBLAS_CORETYPE"}
+    process = subprocess.Popen([args.bench, deck, "--threads", "2", "-o",
+                                os.path.join(args.scratch, "bench.h5")],
+                               env=environment, stdout=subprocess.DEVNULL,
+                               stderr=subprocess.PIPE, text=True)
+    # The driver starts without the settings and re-executes itself with them: the environment
+    # to judge is the last one seen.
+    seen, started = None, time.time()
+    try:
+        while time.time() - started < WATCH_SECONDS and process.poll() is None:
+            try:
+                seen = environment_of(process.pid)
+            except (FileNotFoundError, ProcessLookupError):
+                break
+            if "OMP_WAIT_POLICY" in seen:
+                break
+            time.sleep(0.005)
+    finally:
+        process.kill()
+        process.wait()
+    if seen is None:
+        fail(f"the driver did not run (exit {process.returncode}): {process.stderr.read()[-2000:]}")
+    expected_core = expected_openblas_core()
+    print(f"driver: OMP_WAIT_POLICY={seen.get('OMP_WAIT_POLICY')} "
+          f"OMP_THREAD_LIMIT={seen.get('OMP_THREAD_LIMIT')} "
+          f"OPENBLAS_CORETYPE={seen.get('OPENBLAS_CORETYPE')} (expected {expected_core})")
+    if seen.get("OMP_WAIT_POLICY") != "passive" or seen.get("OMP_THREAD_LIMIT") != "2":
+        fail("the benchmark driver did not get the engine's OpenMP settings")
+    if seen.get("OPENBLAS_CORETYPE") != expected_core:
+        fail("the benchmark driver did not get the engine's BLAS kernels")
+
+
 def missing_program_case(args):
     alone = os.path.join(args.scratch, "covcontact")
     shutil.copy(args.covcontact, alone)
@@ -145,9 +184,11 @@ def missing_program_case(args):
 
 
 def main():
-    cases = {"environment": environment_case, "missing_program": missing_program_case}
+    cases = {"environment": environment_case, "missing_program": missing_program_case,
+             "bench_driver": bench_driver_case}
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("--covcontact", required=True)
+    parser.add_argument("--bench", help="covcontact_bench (case bench_driver)")
     parser.add_argument("--decks", required=True, help="input/stress")
     parser.add_argument("--scratch", required=True, help="working directory (emptied first)")
     parser.add_argument("--case", required=True, choices=sorted(cases))
