@@ -27,12 +27,24 @@ namespace {
 // balance elements of very different cost (contact items next to empty ones).
 constexpr int kScheduleChunk = 16;
 
-// Contributions with fewer items run on one thread. Threads pay one barrier per color; on a
-// machine whose cores are busy with other work a barrier can wait a whole time slice for a
-// descheduled thread (measured: the 500-element main example took 15 s on one thread and
-// 70-90 s on two on a loaded 2-core machine), so only contributions large enough for the
-// per-color work to dwarf that go parallel.
-constexpr std::size_t kDefaultMinItemsForThreads = 2048;
+// Contributions with too little work per color run on one thread. Threads pay one barrier per
+// color, where the thread that finishes first sleeps (OMP_WAIT_POLICY=passive) and is woken
+// again: ~50 us per barrier on this workplace's 2-core machines (57 k scaling deck: 4.19 s of
+// elements with spinning threads, 4.46 s sleeping). On a machine whose cores are busy with other
+// work a barrier can wait a whole time slice for a descheduled thread (measured in an earlier
+// session: the 500-element main example took 15 s on one thread and 70-90 s on two on a loaded
+// 2-core machine). The rule is one of work per color: a contribution goes parallel when its
+// work divided by its colors reaches that of minItemsForThreads items of kReferenceItemCpuSeconds
+// spread over kReferenceColors colors (the 8 of a structured Hex8 mesh), 0.19 ms by default.
+// Measured (docs/performance/solvers.md, twenty-fifth session): the scaling decks' base blocks
+// and contact kernels (0.2-1.1 ms per color), which a threshold of 2 048 items per contribution
+// kept on one thread, go parallel (elements + contact kernel on two threads 1.53-1.67x faster
+// at 20 k instead of 1.24-1.35x); example 6.1's block (400 elements, ~0.3 ms per color)
+// assembles 25 % faster on two threads for 10 % more CPU; its contact kernel and base stay
+// on one. A process busy on one of the two cores left a 20 k run on two threads as fast as on
+// one either way; threads spinning at the barriers (GOMP_SPINCOUNT) made it 1.5 times slower.
+constexpr std::size_t kDefaultMinItemsForThreads = 256;
+constexpr double kReferenceColors = 8;
 // The threshold is one of work, not of items: minItemsForThreads items of this CPU cost (a Hex8
 // element with its tangent, 5.7-7.4 us measured on the paper's and the ironing decks). Each
 // contribution's own cost per item is measured (thread CPU time, which load does not inflate)
@@ -306,7 +318,9 @@ void Assembler::Impl::evaluateContribution(std::size_t index, const AssemblyStat
   double& perItem = states[index].cpuSecondsPerItem[tangent ? 1 : 0];
   const double items = static_cast<double>(coloring.items.size());
   const double work = items * (perItem >= 0 ? perItem : kReferenceItemCpuSeconds);
-  const bool threads = work >= static_cast<double>(minItemsForThreads) * kReferenceItemCpuSeconds;
+  const double colors = static_cast<double>(std::max<std::size_t>(coloring.numColors(), 1));
+  const bool threads = work / colors >= static_cast<double>(minItemsForThreads) *
+                                            kReferenceItemCpuSeconds / kReferenceColors;
   double cpuSeconds = 0;
 #pragma omp parallel if (threads) reduction(+ : cpuSeconds)
   {

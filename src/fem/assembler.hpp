@@ -67,8 +67,9 @@ class Assembler {
   int threads() const;
   // Restricts the items evaluated and added (contribution index in the constructor's order).
   void setItemFilter(ItemFilter filter);
-  // Contributions with less work than this many Hex8 elements are evaluated on one thread
-  // (default 2048; each contribution's items weighted by their measured cost, see assembler.cpp).
+  // Contributions with less work per color than this many Hex8 elements spread over 8 colors
+  // are evaluated on one thread (default 256; each contribution's items weighted by their
+  // measured cost, see assembler.cpp).
   void setMinItemsForThreads(std::size_t items);
 
  private:
