@@ -38,11 +38,12 @@ constexpr int kScheduleChunk = 16;
 // spread over kReferenceColors colors (the 8 of a structured Hex8 mesh), 0.19 ms by default.
 // Measured (docs/performance/solvers.md, twenty-fifth session): the scaling decks' base blocks
 // and contact kernels (0.2-1.1 ms per color), which a threshold of 2 048 items per contribution
-// kept on one thread, go parallel (elements + contact kernel on two threads 1.53-1.67x faster
-// at 20 k instead of 1.24-1.35x); example 6.1's block (400 elements, ~0.3 ms per color)
-// assembles 25 % faster on two threads for 10 % more CPU; its contact kernel and base stay
-// on one. A process busy on one of the two cores left a 20 k run on two threads as fast as on
-// one either way; threads spinning at the barriers (GOMP_SPINCOUNT) made it 1.5 times slower.
+// kept on one thread, go parallel (elements + contact kernel on two threads 1.42-1.67x faster
+// at 20 k instead of 1.24-1.35x, 1.39-1.79x at 57 k instead of 1.45-1.47x); example 6.1's
+// block (400 elements, ~0.3 ms per color) assembles 25 % faster on two threads for 10 % more
+// CPU; its contact kernel and base stay on one. A process busy on one of the two cores left a
+// 20 k run on two threads as fast as on one either way; threads spinning at the barriers
+// (GOMP_SPINCOUNT) made it 1.5 times slower.
 constexpr std::size_t kDefaultMinItemsForThreads = 256;
 constexpr double kReferenceColors = 8;
 // The threshold is one of work, not of items: minItemsForThreads items of this CPU cost (a Hex8

@@ -1,9 +1,9 @@
 // covcontact_bench: runs a deck exactly as `covcontact run` does (parse, mesh, model, load
 // stepping, HDF5 results; the same OpenMP settings, BLAS kernels and heap policy, from
 // app/run_environment.hpp and app/heap_policy.hpp) and prints one JSON object with the cost
-// split of the run: element
-// assembly, contact search, contact kernel, pattern rebuilds, linear-solver analysis,
-// factorization and solve, output, and the work counters. scripts/bench.py drives it.
+// split of the run: element assembly, contact search, contact kernel, pattern rebuilds,
+// linear-solver analysis, factorization and solve, output, and the work counters.
+// scripts/bench.py drives it.
 //
 //   covcontact_bench DECK [-o RESULTS.h5] [--threads N] [--solver NAME]
 // (--solver as `covcontact run --solver`: scripts/bench.py's memory part runs the direct solvers
