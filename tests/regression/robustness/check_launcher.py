@@ -70,33 +70,53 @@ def thread_count(pid):
     return count if watcher else None
 
 
-def watch_run(args, threads, extra_environment):
-    """Starts the die deck on `threads` threads, watches it for WATCH_SECONDS and stops it;
-    returns (its environment as the engine saw it, the most OS threads it had)."""
+def start_on_die_deck(args, command, threads, extra_environment):
+    """Starts `command` (the program and its subcommand) on the die deck with `threads` threads,
+    in an environment without the run's OpenMP and BLAS settings but for extra_environment."""
     deck = os.path.join(args.scratch, "ironing_die.deck")
     open(deck, "w").write(stress_script.ironing_deck_text(args, "ironing_sts_mu03_wide.deck"))
     environment = {k: v for k, v in os.environ.items()
                    if not k.startswith("OMP_") and k != "OPENBLAS_CORETYPE"}
     environment.update(extra_environment)
-    process = subprocess.Popen([args.covcontact, "run", deck, "--threads", str(threads), "-o",
-                                os.path.join(args.scratch, f"die_{threads}.h5")],
-                               env=environment, stdout=subprocess.DEVNULL,
-                               stderr=subprocess.PIPE, text=True)
-    seen, most_threads, started = None, None, time.time()
+    return subprocess.Popen(command + [deck, "--threads", str(threads), "-o",
+                                       os.path.join(args.scratch, f"die_{threads}.h5")],
+                            env=environment, stdout=subprocess.DEVNULL,
+                            stderr=subprocess.PIPE, text=True)
+
+
+def watch(process, observe):
+    """Calls observe(pid) every 5 ms for up to WATCH_SECONDS, until it returns True or the
+    process ends or leaves /proc, then stops the process."""
+    started = time.time()
     try:
         while time.time() - started < WATCH_SECONDS and process.poll() is None:
             try:
-                if os.readlink(f"/proc/{process.pid}/exe").endswith("/covcontact-engine"):
-                    seen = seen or environment_of(process.pid)
-                    count = thread_count(process.pid)
-                    if count is not None:
-                        most_threads = max(most_threads or 0, count)
+                if observe(process.pid):
+                    break
             except (FileNotFoundError, ProcessLookupError):
                 break
             time.sleep(0.005)
     finally:
         process.kill()
         process.wait()
+
+
+def watch_run(args, threads, extra_environment):
+    """Starts the die deck on `threads` threads, watches it for WATCH_SECONDS and stops it;
+    returns (its environment as the engine saw it, the most OS threads it had)."""
+    process = start_on_die_deck(args, [args.covcontact, "run"], threads, extra_environment)
+    seen, most_threads = None, None
+
+    def observe(pid):
+        nonlocal seen, most_threads
+        if os.readlink(f"/proc/{pid}/exe").endswith("/covcontact-engine"):
+            seen = seen or environment_of(pid)
+            count = thread_count(pid)
+            if count is not None:
+                most_threads = max(most_threads or 0, count)
+        return False
+
+    watch(process, observe)
     if seen is None:
         fail(f"--threads {threads}: the process never became covcontact-engine "
              f"(exit {process.returncode}): {process.stderr.read()[-2000:]}")
@@ -138,29 +158,17 @@ def environment_case(args):
 
 
 def bench_driver_case(args):
-    deck = os.path.join(args.scratch, "ironing_die.deck")
-    open(deck, "w").write(stress_script.ironing_deck_text(args, "ironing_sts_mu03_wide.deck"))
-    environment = {k: v for k, v in os.environ.items()
-                   if not k.startswith("OMP_") and k != "OPENBLAS_CORETYPE"}
-    process = subprocess.Popen([args.bench, deck, "--threads", "2", "-o",
-                                os.path.join(args.scratch, "bench.h5")],
-                               env=environment, stdout=subprocess.DEVNULL,
-                               stderr=subprocess.PIPE, text=True)
+    process = start_on_die_deck(args, [args.bench], 2, {})
     # The driver starts without the settings and re-executes itself with them: the environment
     # to judge is the last one seen.
-    seen, started = None, time.time()
-    try:
-        while time.time() - started < WATCH_SECONDS and process.poll() is None:
-            try:
-                seen = environment_of(process.pid)
-            except (FileNotFoundError, ProcessLookupError):
-                break
-            if "OMP_WAIT_POLICY" in seen:
-                break
-            time.sleep(0.005)
-    finally:
-        process.kill()
-        process.wait()
+    seen = None
+
+    def observe(pid):
+        nonlocal seen
+        seen = environment_of(pid)
+        return "OMP_WAIT_POLICY" in seen
+
+    watch(process, observe)
     if seen is None:
         fail(f"the driver did not run (exit {process.returncode}): {process.stderr.read()[-2000:]}")
     expected_core = expected_openblas_core()
