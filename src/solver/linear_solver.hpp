@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -105,6 +106,9 @@ class LinearSolver {
   // Frees the numeric factor and keeps the symbolic analysis: a solver that another one has
   // replaced for now (CHOLMOD while the system is unsymmetric) holds no factor memory.
   virtual void releaseFactor() = 0;
+  // The sign (+1, -1, 0) of the determinant of the matrix last factorized, where the backend
+  // can tell it from its factor (UMFPACK), else nothing.
+  virtual std::optional<int> determinantSign() { return std::nullopt; }
 
   // Iterative backends only (direct ones ignore these): the relative residual the next solves
   // must reach (Newton's forcing term), the mesh layout of the equations, the last solve.

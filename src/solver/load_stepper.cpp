@@ -386,6 +386,13 @@ bool LoadStepper::acceptStep(const PhaseSpec& phase, const NewtonResult& result,
   return false;
 }
 
+// The message of the attempt the stepper gives up on, with Newton's word on a fold of the
+// residual where it has one (Newton::describeFold): then smaller steps were never the remedy.
+std::string LoadStepper::withFold(const std::string& message) const {
+  const std::string fold = newton_->describeFold();
+  return fold.empty() ? message : message + "; " + fold;
+}
+
 bool LoadStepper::rejectStep(const PhaseSpec& phase, const NewtonResult& result,
                              const NewtonStep& step, double dt, StepControl& control,
                              PhaseRun& run) {
@@ -411,7 +418,7 @@ bool LoadStepper::rejectStep(const PhaseSpec& phase, const NewtonResult& result,
                            : RunSummary::Outcome::Diverged;
     summary_.message =
         fmt::format("step {} to t = {:.6g} (dt = {:.3g}) failed after {} cut-backs: {}", step.step,
-                    step.time, dt, control.cutbacks, result.message);
+                    step.time, dt, control.cutbacks, withFold(result.message));
     return false;
   }
   // A step shorter than this (in units of the phase's dt) no longer moves time by more than the
@@ -426,7 +433,8 @@ bool LoadStepper::rejectStep(const PhaseSpec& phase, const NewtonResult& result,
     summary_.message = fmt::format(
         "step {} to t = {:.6g} (dt = {:.3g}) failed after {} cut-backs, and a further cut-back "
         "to dt = {:.3g} would no longer move time (smallest step: {:g} of the phase's dt): {}",
-        step.step, step.time, dt, control.cutbacks, nextDt, kMinStepFraction, result.message);
+        step.step, step.time, dt, control.cutbacks, nextDt, kMinStepFraction,
+        withFold(result.message));
     return false;
   }
   ++control.cutbacks;

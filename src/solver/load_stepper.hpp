@@ -93,6 +93,7 @@ class LoadStepper {
   bool runPhase(const PhaseSpec& phase, double phaseStart, PhaseRun& run);
   bool acceptStep(const PhaseSpec& phase, const NewtonResult& result, double time, bool phaseEnd,
                   StepControl& control, PhaseRun& run);
+  std::string withFold(const std::string& message) const;
   bool rejectStep(const PhaseSpec& phase, const NewtonResult& result, const NewtonStep& step,
                   double dt, StepControl& control, PhaseRun& run);
 

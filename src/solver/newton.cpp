@@ -289,6 +289,8 @@ NewtonResult Newton::solve(const NewtonStep& step, const NewtonSpec& spec,
   // predictor's own residual and energy if larger (a poor prediction).
   Eigen::VectorXd predictedFree, predictedForce;
   std::vector<double> residualHistory;  // ||rhs|| per iteration
+  orientation_.begin(spec.maxIterations, kIterativeBreakEven, !problem_.nodeOwners().empty());
+  foldCandidate_ = false;
   for (int iteration = 1; iteration <= spec.maxIterations; ++iteration) {
     Eigen::VectorXd rhs;
     ContactChanges changes;
@@ -298,6 +300,7 @@ NewtonResult Newton::solve(const NewtonStep& step, const NewtonSpec& spec,
       extrapolatedStart_ = false;  // the first iterate's assembly is the only one at the start
       problem_.rememberContactSearch();  // where the line search's trials start their search
       changes = problem_.takeContactChanges();
+      orientation_.observe(iteration, tangent_.free);
       rhs = -freeResidual();
       if (iteration == 1 && dofs.numPrescribed() > 0) {
         Eigen::VectorXd prescribedForce = tangent_.coupling * prescribedIncrement;
@@ -450,11 +453,16 @@ NewtonResult Newton::solve(const NewtonStep& step, const NewtonSpec& spec,
     }
   }
   const std::string switching = problem_.describeSwitchingContact();
+  foldCandidate_ = !switching.empty();
   return failed(spec.maxIterations, FailureKind::Diverged,
                 fmt::format("no convergence in {} iterations (relative residual {:.3g}, relative "
                             "energy {:.3g}){}",
                             spec.maxIterations, norms.relativeResidual(), norms.relativeEnergy(),
                             switching.empty() ? "" : "; " + switching));
+}
+
+std::string Newton::describeFold() const {
+  return foldCandidate_ ? orientation_.describe() : std::string();
 }
 
 }  // namespace cc

@@ -31,6 +31,7 @@
 #include <vector>
 
 #include "solver/nonlinear_problem.hpp"
+#include "solver/tangent_orientation.hpp"
 #include "solver/tangent_solver.hpp"
 #include "spec/problem_spec.hpp"
 
@@ -134,6 +135,11 @@ class Newton {
   int assemblies() const { return assemblies_; }
   double assemblySeconds() const { return assemblySeconds_; }
   const TangentSolver& linearSolver() const { return linear_; }
+  // After a solve that ran out of iterations with contact points switching: whether the
+  // tangents of its last iterations have determinants of both signs, as a sentence for the
+  // message (tangent_orientation.hpp), else empty. Costs a factorization per kept tangent, so
+  // the load stepper asks only when it gives up.
+  std::string describeFold() const;
   // Diagnostics (covcontact run --check-tangent): at this step and iteration, compare the
   // assembled tangent with central differences of the residual (printed to stderr).
   void setTangentCheck(int step, int iteration) { tangentCheck_ = {step, iteration}; }
@@ -157,6 +163,8 @@ class Newton {
   TangentSolver linear_;
   std::vector<TangentDumpRequest> dumps_;
   SystemMatrices tangent_;
+  TangentOrientationWatch orientation_;  // the last tangents of a solve, for its failure message
+  bool foldCandidate_ = false;           // the last solve ran out of iterations while switching
   Eigen::VectorXd internalForce_;
   double firstResidual_ = 0, firstEnergy_ = 0;
   double finalRelativeResidual_ = 0;

@@ -14,6 +14,7 @@
 #include <chrono>
 #include <climits>
 #include <iterator>
+#include <optional>
 #include <stdexcept>
 #include <type_traits>
 #include <vector>
@@ -41,17 +42,18 @@ int umfpackOrdering(FillOrdering ordering) {
 }
 
 // UMFPACK's routines of one index width: prefix di with int, dl with SuiteSparse_long.
-#define CC_UMFPACK_ROUTINES(Name, IndexType, prefix)                        \
-  struct Name {                                                             \
-    using Index = IndexType;                                                \
-    static constexpr auto defaults = &umfpack_##prefix##_defaults;          \
-    static constexpr auto symbolic = &umfpack_##prefix##_symbolic;          \
-    static constexpr auto qsymbolic = &umfpack_##prefix##_qsymbolic;        \
-    static constexpr auto numeric = &umfpack_##prefix##_numeric;            \
-    static constexpr auto solve = &umfpack_##prefix##_solve;                \
-    static constexpr auto getSymbolic = &umfpack_##prefix##_get_symbolic;   \
-    static constexpr auto freeSymbolic = &umfpack_##prefix##_free_symbolic; \
-    static constexpr auto freeNumeric = &umfpack_##prefix##_free_numeric;   \
+#define CC_UMFPACK_ROUTINES(Name, IndexType, prefix)                         \
+  struct Name {                                                              \
+    using Index = IndexType;                                                 \
+    static constexpr auto defaults = &umfpack_##prefix##_defaults;           \
+    static constexpr auto symbolic = &umfpack_##prefix##_symbolic;           \
+    static constexpr auto qsymbolic = &umfpack_##prefix##_qsymbolic;         \
+    static constexpr auto numeric = &umfpack_##prefix##_numeric;             \
+    static constexpr auto solve = &umfpack_##prefix##_solve;                 \
+    static constexpr auto getSymbolic = &umfpack_##prefix##_get_symbolic;    \
+    static constexpr auto freeSymbolic = &umfpack_##prefix##_free_symbolic;  \
+    static constexpr auto freeNumeric = &umfpack_##prefix##_free_numeric;    \
+    static constexpr auto determinant = &umfpack_##prefix##_get_determinant; \
   }
 CC_UMFPACK_ROUTINES(NarrowIndices, int, di);
 CC_UMFPACK_ROUTINES(WideIndices, SuiteSparse_long, dl);
@@ -179,6 +181,15 @@ class UmfpackFactor {
   void releaseFactor() {
     if (numeric_) Api::freeNumeric(&numeric_);
     matrix_ = nullptr;
+  }
+
+  // The sign of det A from the factor (the product of U's diagonal and of the permutations'
+  // signs, scaling included); mantissa and exponent apart, so that no size overflows.
+  std::optional<int> determinantSign() {
+    if (!numeric_) return std::nullopt;
+    double mantissa = 0, exponent = 0;
+    if (Api::determinant(&mantissa, &exponent, numeric_, info_) != UMFPACK_OK) return std::nullopt;
+    return mantissa > 0 ? 1 : mantissa < 0 ? -1 : 0;
   }
 
  private:
@@ -377,6 +388,10 @@ class UmfpackSolver final : public LinearSolver {
   void releaseFactor() override {
     if (narrow_) narrow_->releaseFactor();
     if (wide_) wide_->releaseFactor();
+  }
+
+  std::optional<int> determinantSign() override {
+    return narrow_ ? narrow_->determinantSign() : wide_->determinantSign();
   }
 
  private:

@@ -105,6 +105,36 @@ TEST(LinearSolver, UmfpackSolvesUnsymmetricSystem) {
   EXPECT_LT((x - reference).norm(), 1e-12 * reference.norm());
 }
 
+// The sign of the determinant from UMFPACK's factor (what a failing Newton solve reports when
+// its tangents have both signs, tangent_orientation.hpp): the grid Laplacian minus s I has the
+// eigenvalues 4 - 2 cos(i pi / 9) - 2 cos(j pi / 9), i, j = 1..8, so its determinant has the
+// sign (-1)^(number of them below s); with an unsymmetric perturbation, that of a dense LU. In
+// 32- and 64-bit indices.
+TEST(LinearSolver, UmfpackTellsTheSignOfTheDeterminant) {
+  const double pi = std::acos(-1.0);
+  for (const double narrowUnitLimit : {double(INT_MAX), 1.0}) {
+    for (const double shift : {0.0, 0.5, 1.0, 2.1, 4.3}) {
+      int below = 0;
+      for (int i = 1; i <= 8; ++i)
+        for (int j = 1; j <= 8; ++j) {
+          below += 4 - 2 * std::cos(i * pi / 9) - 2 * std::cos(j * pi / 9) < shift;
+        }
+      SparseMatrix matrix = gridLaplacian(8, shift);
+      auto solver = makeUmfpackSolver(kDefaultOrdering, narrowUnitLimit);
+      EXPECT_FALSE(solver->determinantSign());  // nothing factorized yet
+      solver->analyzePattern(matrix);
+      solver->factorize(matrix);
+      EXPECT_EQ(solver->determinantSign(), below % 2 ? -1 : 1) << shift << " " << below;
+      for (int k = 0; k + 1 < matrix.rows(); ++k) matrix.coeffRef(k, k + 1) += 0.3 * (k % 3 == 0);
+      matrix.makeCompressed();
+      solver->analyzePattern(matrix);
+      solver->factorize(matrix);
+      const double dense = Eigen::MatrixXd(matrix).partialPivLu().determinant();
+      EXPECT_EQ(solver->determinantSign(), dense > 0 ? 1 : -1) << shift;
+    }
+  }
+}
+
 // UMFPACK reads the tangent's 32-bit indices in place and moves to 64-bit indices (a widened
 // copy) for good once an analysis estimates a factor beyond what 32-bit indices address. The
 // limit is lowered here so that the larger of two grids crosses it; both widths must solve.

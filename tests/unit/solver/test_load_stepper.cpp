@@ -108,6 +108,34 @@ TEST(LoadStepper, StopsAfterTheCutbackLimitKeepingConvergedSteps) {
       << summary.message;
 }
 
+// A spring pulled past its peak force has no equilibrium at any step size: the stepper gives up
+// after its cut-backs, and its message carries Newton's finding that the tangents of the last
+// attempt have determinants of both signs (Newton::describeFold), since contact points kept
+// switching there. Without switching points the message has no such sentence.
+TEST(LoadStepper, GivingUpOnAFoldSaysSo) {
+  struct SwitchingChain : SpringChain {
+    using SpringChain::SpringChain;
+    std::string switching;
+    std::string describeSwitchingContact() override { return switching; }
+  };
+  const SpringLaw peaked{[](double d) { return d < 1 ? d : 1 - 0.5 * (d - 1); },
+                         [](double d) { return d < 1 ? 1.0 : -0.5; }};
+  for (const std::string switching : {"1 contact point kept changing", ""}) {
+    SwitchingChain chain(1, peaked, {}, [](double) { return 1.5; });
+    chain.switching = switching;
+    RecordingObserver observer;
+    PhaseSpec spec = phase(1, 1.0);
+    spec.cutback.maxCutbacks = 2;
+    LoadStepper stepper(chain, observer, {spec});
+    const RunSummary summary = stepper.run();
+    ASSERT_EQ(summary.outcome, RunSummary::Outcome::Diverged);
+    EXPECT_EQ(summary.stepsConverged, 0);
+    const bool fold =
+        summary.message.find("the tangent's determinant changes sign") != std::string::npos;
+    EXPECT_EQ(fold, !switching.empty()) << summary.message;
+  }
+}
+
 TEST(LoadStepper, UnsupportedChainStopsAsSingular) {
   // No support in x: a rigid-body mode; smaller steps cannot help.
   SpringChain chain(

@@ -242,5 +242,39 @@ TEST(Newton, AFailedSolveNamesTheContactPointsThatKeptSwitching) {
   }
 }
 
+// A spring that softens past its peak force 1 at d = 1 (N = d, then 1 - (d - 1) / 2), pulled
+// by 1.5: there is no equilibrium. Newton goes 0 -> 1.5 -> 0 ... on tangents +1 and -1/2, and
+// Newton's word on the failure says that the tangent's determinant changes sign, the mark of a
+// fold (tangent_orientation.hpp; the load stepper adds it to the message it gives up with).
+TEST(Newton, AFailedSolveOnTangentsOfBothSignsSaysTheResidualFolds) {
+  struct SwitchingChain : SpringChain {
+    using SpringChain::SpringChain;
+    std::string describeSwitchingContact() override { return "1 contact point kept changing"; }
+  };
+  const SpringLaw peaked{[](double d) { return d < 1 ? d : 1 - 0.5 * (d - 1); },
+                         [](double d) { return d < 1 ? 1.0 : -0.5; }};
+  SwitchingChain chain(1, peaked, {}, [](double t) { return 1.5 * t; });
+  RecordingObserver observer;
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(6);
+  NewtonSpec spec;
+  spec.maxIterations = 4;  // below the period-2 detector's five norms
+  Newton newton(chain, observer, Newton::Clock::now());
+  const NewtonResult result = newton.solve({1, 0, 1.0, 0.0}, spec, u);
+  ASSERT_EQ(result.status, NewtonResult::Status::Failed);
+  ASSERT_EQ(observer.iterations.size(), 4u);
+  EXPECT_NEAR(observer.iterations[1].relativeResidual, 0.5, 1e-12);  // at d = 1.5: 1.5 - 0.75
+  EXPECT_TRUE(result.message.ends_with("1 contact point kept changing")) << result.message;
+  EXPECT_EQ(newton.describeFold().find("the tangent's determinant changes sign between these "
+                                       "iterations (1 +, 2 -, 3 +, 4 -)"),
+            0u)
+      << newton.describeFold();
+  // Pulled by 0.5, below the peak, the same spring converges: nothing to describe.
+  SwitchingChain below(1, peaked, {}, [](double t) { return 0.5 * t; });
+  Newton converging(below, observer, Newton::Clock::now());
+  u.setZero();
+  ASSERT_EQ(converging.solve({1, 0, 1.0, 0.0}, spec, u).status, NewtonResult::Status::Converged);
+  EXPECT_EQ(converging.describeFold(), "");
+}
+
 }  // namespace
 }  // namespace cc

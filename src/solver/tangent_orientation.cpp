@@ -1,0 +1,59 @@
+// Determinant signs of a failing Newton solve's last tangents (see tangent_orientation.hpp).
+#include "solver/tangent_orientation.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <optional>
+#include <stdexcept>
+#include <vector>
+
+#include "common/errors.hpp"
+#include "solver/linear_solver.hpp"
+
+namespace cc {
+
+void TangentOrientationWatch::observe(int iteration, const SparseMatrix& tangent) {
+  if (iteration < from_ || tangent.rows() == 0 || tangent.rows() > maxEquations_) return;
+  kept_.push_back({iteration, tangent});
+  if (kept_.size() > static_cast<std::size_t>(kOrientationWindow)) kept_.pop_front();
+}
+
+std::string TangentOrientationWatch::describe() const {
+  std::vector<int> signs;
+  std::vector<int> iterations;
+  for (const Kept& kept : kept_) {
+    std::optional<int> sign;
+    try {
+      const auto solver = makeUmfpackSolver();
+      solver->analyzePattern(kept.tangent);
+      solver->factorize(kept.tangent);
+      sign = solver->determinantSign();
+    } catch (const StepFailure&) {
+      sign = 0;  // singular: on the fold itself
+    } catch (const std::exception&) {
+      return {};  // no factor (out of memory): nothing to say
+    }
+    if (!sign) return {};
+    signs.push_back(*sign);
+    iterations.push_back(kept.iteration);
+  }
+  const bool positive = std::find(signs.begin(), signs.end(), 1) != signs.end();
+  const bool negative = std::find(signs.begin(), signs.end(), -1) != signs.end();
+  if (!positive || !negative) return {};
+  std::string list;
+  for (std::size_t k = 0; k < signs.size(); ++k) {
+    list += fmt::format("{}{} {}", k ? ", " : "", iterations[k],
+                        signs[k] > 0   ? "+"
+                        : signs[k] < 0 ? "-"
+                                       : "0");
+  }
+  return fmt::format(
+      "the tangent's determinant changes sign between these iterations ({}): with the contact "
+      "states Newton passes through, equilibrium has no locally unique solution here, most "
+      "likely a limit point of the frictional problem (a stick/slip instability), which smaller "
+      "steps do not pass",
+      list);
+}
+
+}  // namespace cc

@@ -1,0 +1,48 @@
+// Tangent orientation of a failing Newton solve: the signs of the determinants of the last
+// iterations' tangents, for the failure message. Where contact points keep switching and the
+// tangents of the states Newton passes through have determinants of both signs, the residual
+// folds over there: it has no locally unique zero near the iterates, and no smaller step or
+// line search gets through. That is a limit point of the discrete frictional problem (a
+// stick/slip instability, Klarbring's non-uniqueness), not a solver fault, and the message says
+// so (issue 14: ironing_nts_mu06_equal stops at t = 0.667 with a slab edge node under the die's
+// free edge switching stick/slip; one of its tangents has the eigenvalue -0.35, the other none
+// below +0.0067; docs/verification/sliding.md, twenty-sixth session).
+#pragma once
+
+#include <Eigen/Core>
+#include <deque>
+#include <string>
+
+#include "fem/sparse_matrix.hpp"
+
+namespace cc {
+
+// Iterations whose tangents are kept: the stick/slip cycles measured repeat within 2-5.
+inline constexpr int kOrientationWindow = 5;
+
+class TangentOrientationWatch {
+ public:
+  // Keeps the tangents of the last kOrientationWindow iterations of an attempt of at most
+  // maxIterations; only systems a direct solver serves (up to maxEquations) on one process.
+  void begin(int maxIterations, Eigen::Index maxEquations, bool distributed) {
+    kept_.clear();
+    from_ = maxIterations - kOrientationWindow + 1;
+    maxEquations_ = distributed ? 0 : maxEquations;
+  }
+  // The tangent assembled at `iteration` (kept only within the window: no cost before it).
+  void observe(int iteration, const SparseMatrix& tangent);
+  // Factorizes the kept tangents (UMFPACK) and, if their determinants have both signs, returns
+  // the sentence for the failure message; else an empty string.
+  std::string describe() const;
+
+ private:
+  struct Kept {
+    int iteration;
+    SparseMatrix tangent;
+  };
+  std::deque<Kept> kept_;
+  int from_ = 0;
+  Eigen::Index maxEquations_ = 0;
+};
+
+}  // namespace cc
