@@ -7,6 +7,7 @@
 #include <functional>
 #include <limits>
 #include <memory>
+#include <string>
 
 #include "fem/assembler.hpp"
 #include "solver/nonlinear_problem.hpp"
@@ -29,6 +30,12 @@ struct SpringLaw {
   // N = atan(d): softening towards a plateau, where full Newton steps overshoot.
   static SpringLaw arctangent() {
     return {[](double d) { return std::atan(d); }, [](double d) { return 1 / (1 + d * d); }};
+  }
+  // N = d up to the peak force 1 at d = 1, then 1 - (d - 1) / 2: pulled by more than 1 there
+  // is no equilibrium, and Newton alternates between tangents +1 and -1/2 (a fold).
+  static SpringLaw peaked() {
+    return {[](double d) { return d < 1 ? d : 1 - 0.5 * (d - 1); },
+            [](double d) { return d < 1 ? 1.0 : -0.5; }};
   }
 };
 
@@ -120,6 +127,13 @@ class SpringChain : public NonlinearProblem {
   Eigen::Matrix3Xd reference_;
   DofMap dofs_;
   std::unique_ptr<Assembler> assembler_;
+};
+
+// A chain whose "contact points" the test says kept switching (describeSwitchingContact).
+struct SwitchingChain : SpringChain {
+  using SpringChain::SpringChain;
+  std::string switching;
+  std::string describeSwitchingContact() override { return switching; }
 };
 
 struct ConvergedStep {

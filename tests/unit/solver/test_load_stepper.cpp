@@ -12,6 +12,7 @@ namespace {
 using test::RecordingObserver;
 using test::SpringChain;
 using test::SpringLaw;
+using test::SwitchingChain;
 
 PhaseSpec phase(int steps, double dt) {
   PhaseSpec spec;
@@ -113,15 +114,8 @@ TEST(LoadStepper, StopsAfterTheCutbackLimitKeepingConvergedSteps) {
 // attempt have determinants of both signs (Newton::describeFold), since contact points kept
 // switching there. Without switching points the message has no such sentence.
 TEST(LoadStepper, GivingUpOnAFoldSaysSo) {
-  struct SwitchingChain : SpringChain {
-    using SpringChain::SpringChain;
-    std::string switching;
-    std::string describeSwitchingContact() override { return switching; }
-  };
-  const SpringLaw peaked{[](double d) { return d < 1 ? d : 1 - 0.5 * (d - 1); },
-                         [](double d) { return d < 1 ? 1.0 : -0.5; }};
   for (const std::string switching : {"1 contact point kept changing", ""}) {
-    SwitchingChain chain(1, peaked, {}, [](double) { return 1.5; });
+    SwitchingChain chain(1, SpringLaw::peaked(), {}, [](double) { return 1.5; });
     chain.switching = switching;
     RecordingObserver observer;
     PhaseSpec spec = phase(1, 1.0);

@@ -15,6 +15,7 @@ namespace {
 using test::RecordingObserver;
 using test::SpringChain;
 using test::SpringLaw;
+using test::SwitchingChain;
 
 NewtonResult solveStep(SpringChain& chain, RecordingObserver& observer, const NewtonSpec& spec,
                        Eigen::VectorXd& displacement, double time, double previousTime = 0) {
@@ -221,11 +222,6 @@ TEST(Newton, ResidualGrowthBeyondTheDivergenceFactorFails) {
 // that kept switching, as the problem describes them (Model names them by pair, point and mesh
 // node; contact_pair_diagnostics.cpp counts them). Nothing is added when none did.
 TEST(Newton, AFailedSolveNamesTheContactPointsThatKeptSwitching) {
-  struct SwitchingChain : SpringChain {
-    using SpringChain::SpringChain;
-    std::string switching;
-    std::string describeSwitchingContact() override { return switching; }
-  };
   for (const std::string& switching :
        {std::string(), std::string("2 contact points kept changing")}) {
     SwitchingChain chain(4, SpringLaw::cubic(1.0, 1.0), {}, [](double t) { return 2.0 * t; });
@@ -242,18 +238,13 @@ TEST(Newton, AFailedSolveNamesTheContactPointsThatKeptSwitching) {
   }
 }
 
-// A spring that softens past its peak force 1 at d = 1 (N = d, then 1 - (d - 1) / 2), pulled
-// by 1.5: there is no equilibrium. Newton goes 0 -> 1.5 -> 0 ... on tangents +1 and -1/2, and
+// A spring that softens past its peak force 1 at d = 1 (SpringLaw::peaked), pulled by 1.5:
+// there is no equilibrium. Newton goes 0 -> 1.5 -> 0 ... on tangents +1 and -1/2, and
 // Newton's word on the failure says that the tangent's determinant changes sign, the mark of a
 // fold (tangent_orientation.hpp; the load stepper adds it to the message it gives up with).
 TEST(Newton, AFailedSolveOnTangentsOfBothSignsSaysTheResidualFolds) {
-  struct SwitchingChain : SpringChain {
-    using SpringChain::SpringChain;
-    std::string describeSwitchingContact() override { return "1 contact point kept changing"; }
-  };
-  const SpringLaw peaked{[](double d) { return d < 1 ? d : 1 - 0.5 * (d - 1); },
-                         [](double d) { return d < 1 ? 1.0 : -0.5; }};
-  SwitchingChain chain(1, peaked, {}, [](double t) { return 1.5 * t; });
+  SwitchingChain chain(1, SpringLaw::peaked(), {}, [](double t) { return 1.5 * t; });
+  chain.switching = "1 contact point kept changing";
   RecordingObserver observer;
   Eigen::VectorXd u = Eigen::VectorXd::Zero(6);
   NewtonSpec spec;
@@ -269,7 +260,8 @@ TEST(Newton, AFailedSolveOnTangentsOfBothSignsSaysTheResidualFolds) {
             0u)
       << newton.describeFold();
   // Pulled by 0.5, below the peak, the same spring converges: nothing to describe.
-  SwitchingChain below(1, peaked, {}, [](double t) { return 0.5 * t; });
+  SwitchingChain below(1, SpringLaw::peaked(), {}, [](double t) { return 0.5 * t; });
+  below.switching = chain.switching;
   Newton converging(below, observer, Newton::Clock::now());
   u.setZero();
   ASSERT_EQ(converging.solve({1, 0, 1.0, 0.0}, spec, u).status, NewtonResult::Status::Converged);
