@@ -19,6 +19,10 @@ namespace cc {
 
 // Iterations whose tangents are kept: the stick/slip cycles measured repeat within 2-5.
 inline constexpr int kOrientationWindow = 5;
+// Free equations up to which they are kept: five factorizations of a 3D tangent of 20 000
+// equations take about 20 s on one thread (4.3 s each, docs/performance/solvers.md), a bounded
+// price for the message of a run that has given up; larger systems get no verdict.
+inline constexpr Eigen::Index kOrientationEquations = 20000;
 
 class TangentOrientationWatch {
  public:
