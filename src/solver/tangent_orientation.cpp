@@ -29,10 +29,11 @@ std::string TangentOrientationWatch::describe() const {
       solver->analyzePattern(kept.tangent);
       solver->factorize(kept.tangent);
       sign = solver->determinantSign();
-    } catch (const StepFailure&) {
+    } catch (const StepFailure& failure) {
+      if (failure.kind() != FailureKind::SingularSystem) return {};
       sign = 0;  // singular: on the fold itself
     } catch (const std::exception&) {
-      return {};  // no factor (out of memory): nothing to say
+      return {};  // no factor (out of memory, OutOfMemory or bad_alloc): nothing to say
     }
     if (!sign) return {};
     signs.push_back(*sign);
