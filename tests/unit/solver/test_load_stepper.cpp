@@ -28,6 +28,14 @@ std::vector<double> convergedTimes(const RecordingObserver& observer) {
   return times;
 }
 
+// One phase run with at most maxCutbacks cut-backs.
+RunSummary runWithCutbackLimit(SpringChain& chain, RecordingObserver& observer, PhaseSpec spec,
+                               int maxCutbacks) {
+  spec.cutback.maxCutbacks = maxCutbacks;
+  LoadStepper stepper(chain, observer, {spec});
+  return stepper.run();
+}
+
 SpringChain linearChain() {
   return SpringChain(3, SpringLaw::linear(1.0), [](double t) { return 0.1 * t; });
 }
@@ -93,10 +101,7 @@ TEST(LoadStepper, StopsAfterTheCutbackLimitKeepingConvergedSteps) {
   chain.items().failThreshold = 0.0;  // every step ending after t = 2 fails
   chain.items().failFrom = 2.0;
   RecordingObserver observer;
-  PhaseSpec spec = phase(5, 1.0);
-  spec.cutback.maxCutbacks = 3;
-  LoadStepper stepper(chain, observer, {spec});
-  const RunSummary summary = stepper.run();
+  const RunSummary summary = runWithCutbackLimit(chain, observer, phase(5, 1.0), 3);
   EXPECT_EQ(summary.outcome, RunSummary::Outcome::Diverged);
   EXPECT_EQ(summary.stepsConverged, 2);
   EXPECT_EQ(summary.finalTime, 2.0);
@@ -118,10 +123,7 @@ TEST(LoadStepper, GivingUpOnAFoldSaysSo) {
     SwitchingChain chain(1, SpringLaw::peaked(), {}, [](double) { return 1.5; });
     chain.switching = switching;
     RecordingObserver observer;
-    PhaseSpec spec = phase(1, 1.0);
-    spec.cutback.maxCutbacks = 2;
-    LoadStepper stepper(chain, observer, {spec});
-    const RunSummary summary = stepper.run();
+    const RunSummary summary = runWithCutbackLimit(chain, observer, phase(1, 1.0), 2);
     ASSERT_EQ(summary.outcome, RunSummary::Outcome::Diverged);
     EXPECT_EQ(summary.stepsConverged, 0);
     const bool fold =
