@@ -289,7 +289,7 @@ NewtonResult Newton::solve(const NewtonStep& step, const NewtonSpec& spec,
   // predictor's own residual and energy if larger (a poor prediction).
   Eigen::VectorXd predictedFree, predictedForce;
   std::vector<double> residualHistory;  // ||rhs|| per iteration
-  orientation_.begin(spec.maxIterations, kOrientationEquations, !problem_.nodeOwners().empty());
+  orientation_.begin(spec.maxIterations, !problem_.nodeOwners().empty());
   foldCandidate_ = false;
   for (int iteration = 1; iteration <= spec.maxIterations; ++iteration) {
     Eigen::VectorXd rhs;

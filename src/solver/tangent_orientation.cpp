@@ -14,7 +14,10 @@
 namespace cc {
 
 void TangentOrientationWatch::observe(int iteration, const SparseMatrix& tangent) {
-  if (iteration < from_ || tangent.rows() == 0 || tangent.rows() > maxEquations_) return;
+  if (distributed_ || iteration < from_ || tangent.rows() == 0 ||
+      tangent.rows() > kOrientationEquations) {
+    return;
+  }
   kept_.push_back({iteration, tangent});
   if (kept_.size() > static_cast<std::size_t>(kOrientationWindow)) kept_.pop_front();
 }

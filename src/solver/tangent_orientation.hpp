@@ -27,11 +27,11 @@ inline constexpr Eigen::Index kOrientationEquations = 20000;
 class TangentOrientationWatch {
  public:
   // Keeps the tangents of the last kOrientationWindow iterations of an attempt of at most
-  // maxIterations; only systems a direct solver serves (up to maxEquations) on one process.
-  void begin(int maxIterations, Eigen::Index maxEquations, bool distributed) {
+  // maxIterations; only up to kOrientationEquations equations, on one process.
+  void begin(int maxIterations, bool distributed) {
     kept_.clear();
     from_ = maxIterations - kOrientationWindow + 1;
-    maxEquations_ = distributed ? 0 : maxEquations;
+    distributed_ = distributed;
   }
   // The tangent assembled at `iteration` (kept only within the window: no cost before it).
   void observe(int iteration, const SparseMatrix& tangent);
@@ -46,7 +46,7 @@ class TangentOrientationWatch {
   };
   std::deque<Kept> kept_;
   int from_ = 0;
-  Eigen::Index maxEquations_ = 0;
+  bool distributed_ = false;
 };
 
 }  // namespace cc
