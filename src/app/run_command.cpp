@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <iostream>
 #include <new>
+#include <numbers>
 #include <sstream>
 
 #include "app/allocation_failure.hpp"
@@ -364,6 +365,15 @@ int runCommand(const RunOptions& options) {
       if (config.automaticPenalty) {
         printOut(fmt::format("contact '{}': automatic penalty eps_n = {:.6g}, eps_t = {:.6g}\n",
                              config.name, config.law.penaltyNormal, config.law.penaltyTangential));
+      }
+      // What the smoothing keeps sharp, so that a user sees a tool's edges were recognised
+      // (or that crease= should be higher for a coarse curved mesh whose facets turn by more).
+      if (config.smoothMaster && pair->creaseCount() > 0) {
+        printOut(
+            fmt::format("contact '{}': surface=smooth keeps {} edge{} sharp (facets meeting "
+                        "at more than crease = {:g} degrees)\n",
+                        config.name, pair->creaseCount(), pair->creaseCount() == 1 ? "" : "s",
+                        config.creaseAngle * 180 / std::numbers::pi));
       }
       // A penalty far above E/h makes Newton's region of convergence small: say so, with the
       // value the automatic penalty would take (a step failing there is retried by penalty

@@ -25,6 +25,7 @@ ContactPair::ContactPair(ContactPairConfig config, const FaceSet& master,
       points_(std::move(points)),
       accelerator_(config_.accelerationDepth) {
   tracker_.setSmooth(config_.smoothMaster);
+  tracker_.setCreaseAngle(config_.creaseAngle);
   tracker_.setFadingEdges(config_.fadingEdges);
   for (PairPoint& p : points_) buildItem(p);
 }

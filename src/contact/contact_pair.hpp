@@ -47,6 +47,8 @@ struct ContactPairConfig {
   // normal and curvature on Nagata patches (nagata.hpp) over nodal normals taken from the
   // converged configuration at the start of each step and held fixed over it.
   bool smoothMaster = false;
+  // Smoothed master: edges where the facets turn by more than this (radians) stay sharp.
+  double creaseAngle = kDefaultCreaseAngle;
   // Free master edges where the force fades out (contact_point.hpp, kFreeEdgeBand).
   bool fadingEdges = false;
   // Segment-exact STS integration (issue 16, part 1; segmentation.hpp): the points of each
@@ -141,6 +143,11 @@ class ContactPair : public Contribution {
   void importHistory(const Eigen::MatrixXd& table);
   const ContactPairConfig& config() const { return config_; }
   int pointCount() const { return static_cast<int>(points_.size()); }
+
+  // Smoothed master: its creases, from the mesh as given (MasterSurface::findCreases), and how
+  // many shared edges are creases.
+  void findCreases(const Eigen::Matrix3Xd& reference) { tracker_.findCreases(reference); }
+  int creaseCount() const { return tracker_.master().creaseCount(); }
 
  private:
   ContactPair(ContactPairConfig config, const FaceSet& master, std::vector<PairPoint> points);

@@ -120,8 +120,31 @@ NodeMatrix<double> MasterSurface::segmentNodes(int segment,
   return nodes;
 }
 
-void MasterSurface::updateNormals(const Eigen::Matrix3Xd& coordinates) {
-  nodalNormals_.setZero(3, coordinates.cols());
+namespace {
+
+// Union-find over segment corners (4 s + k), for the smooth fans around each node.
+int fanRoot(std::vector<int>& parent, int corner) {
+  while (parent[corner] != corner) corner = parent[corner] = parent[parent[corner]];
+  return corner;
+}
+
+// The corner of `segment` at mesh node `node` (-1 if none).
+int cornerAt(const Connectivity& segments, int segment, int node) {
+  for (int k = 0; k < 4; ++k) {
+    if (segments(segment, k) == node) return k;
+  }
+  return -1;
+}
+
+}  // namespace
+
+// Angle-weighted corner normals of the facets (Thuermer & Wuethrich) and their unit vectors,
+// per segment corner 4 s + k.
+void MasterSurface::cornerNormalsOf(const Eigen::Matrix3Xd& coordinates,
+                                    std::vector<Eigen::Vector3d>& weighted,
+                                    std::vector<Eigen::Vector3d>& unit) const {
+  weighted.assign(4 * segmentCount(), Eigen::Vector3d::Zero());
+  unit.assign(4 * segmentCount(), Eigen::Vector3d::Zero());
   for (int s = 0; s < segmentCount(); ++s) {
     for (int k = 0; k < 4; ++k) {
       const Eigen::Vector3d corner = coordinates.col(segments_(s, k));
@@ -129,12 +152,76 @@ void MasterSurface::updateNormals(const Eigen::Matrix3Xd& coordinates) {
       const Eigen::Vector3d previous = coordinates.col(segments_(s, (k + 3) % 4)) - corner;
       const Eigen::Vector3d cross = next.cross(previous);  // along rho_1 x rho_2 at the corner
       const double angle = std::atan2(cross.norm(), next.dot(previous));
-      if (cross.norm() > 0) nodalNormals_.col(segments_(s, k)) += angle * cross.normalized();
+      if (cross.norm() > 0) {
+        unit[4 * s + k] = cross.normalized();
+        weighted[4 * s + k] = angle * unit[4 * s + k];
+      }
     }
   }
-  for (Eigen::Index n = 0; n < nodalNormals_.cols(); ++n) {
-    const double length = nodalNormals_.col(n).norm();
-    if (length > 0) nodalNormals_.col(n) /= length;
+}
+
+// A shared edge across which the facets turn by more than the crease angle stays sharp. Decided
+// once, on the mesh as given (a tool's edges are a property of its design, and a decision
+// repeated on the deformed surface would flip edges near the angle from step to step).
+void MasterSurface::findCreases(const Eigen::Matrix3Xd& reference) {
+  std::vector<Eigen::Vector3d> weighted, unit;
+  cornerNormalsOf(reference, weighted, unit);
+  creaseEdges_.assign(segmentCount(), {false, false, false, false});
+  for (int s = 0; s < segmentCount(); ++s) {
+    for (int e = 0; e < 4; ++e) {
+      const int t = neighbour(s, e);
+      if (t < s) continue;  // a free edge, or the pair was seen from t's side
+      const int ti = cornerAt(segments_, t, segments_(s, nagataEdgeStart(e)));
+      const int tj = cornerAt(segments_, t, segments_(s, nagataEdgeEnd(e)));
+      if (ti < 0 || tj < 0) continue;
+      const Eigen::Vector3d mine =
+          unit[4 * s + nagataEdgeStart(e)] + unit[4 * s + nagataEdgeEnd(e)];
+      const Eigen::Vector3d theirs = unit[4 * t + ti] + unit[4 * t + tj];
+      if (std::atan2(mine.cross(theirs).norm(), mine.dot(theirs)) <= creaseAngle_) continue;
+      creaseEdges_[s][e] = true;
+      for (int f = 0; f < 4; ++f) {
+        if (neighbour(t, f) == s) creaseEdges_[t][f] = true;
+      }
+    }
+  }
+}
+
+int MasterSurface::creaseCount() const {
+  int count = 0;
+  for (const auto& edges : creaseEdges_)
+    count += static_cast<int>(std::count(edges.begin(), edges.end(), true));
+  return count / 2;  // each from both sides
+}
+
+void MasterSurface::updateNormals(const Eigen::Matrix3Xd& coordinates) {
+  if (static_cast<int>(creaseEdges_.size()) != segmentCount()) findCreases(coordinates);
+  const int corners = 4 * segmentCount();
+  std::vector<Eigen::Vector3d> weighted, unit;
+  cornerNormalsOf(coordinates, weighted, unit);
+  // Fans: the corners around a node joined through the shared edges that are not creases; each
+  // fan gets its own normal, so a node on a crease has one normal per side.
+  std::vector<int> parent(corners);
+  for (int c = 0; c < corners; ++c) parent[c] = c;
+  for (int s = 0; s < segmentCount(); ++s) {
+    for (int e = 0; e < 4; ++e) {
+      const int t = neighbour(s, e);
+      if (t < s || creaseEdges_[s][e]) continue;
+      const int ti = cornerAt(segments_, t, segments_(s, nagataEdgeStart(e)));
+      const int tj = cornerAt(segments_, t, segments_(s, nagataEdgeEnd(e)));
+      if (ti < 0 || tj < 0) continue;
+      parent[fanRoot(parent, 4 * s + nagataEdgeStart(e))] = fanRoot(parent, 4 * t + ti);
+      parent[fanRoot(parent, 4 * s + nagataEdgeEnd(e))] = fanRoot(parent, 4 * t + tj);
+    }
+  }
+  // Each fan's normal, summed in segment order (without creases: the node's average as before).
+  std::vector<Eigen::Vector3d> fan(corners, Eigen::Vector3d::Zero());
+  for (int c = 0; c < corners; ++c) fan[fanRoot(parent, c)] += weighted[c];
+  cornerNormals_.resize(segmentCount());
+  for (int s = 0; s < segmentCount(); ++s) {
+    for (int k = 0; k < 4; ++k) {
+      const Eigen::Vector3d& sum = fan[fanRoot(parent, 4 * s + k)];
+      cornerNormals_[s][k] = sum.norm() > 0 ? Eigen::Vector3d(sum / sum.norm()) : sum;
+    }
   }
   // Per edge, from the same configuration and held fixed over the step with the normals (as a
   // vector, see nagataFixedTangentialTerm): shared edges get the same term from both sides (with
@@ -143,17 +230,21 @@ void MasterSurface::updateNormals(const Eigen::Matrix3Xd& coordinates) {
   for (int s = 0; s < segmentCount(); ++s) {
     for (int e = 0; e < 4; ++e) {
       const int i = segments_(s, nagataEdgeStart(e)), j = segments_(s, nagataEdgeEnd(e));
-      fixedCorrections_[s][e] = nagataFixedTangentialTerm(
-          nodalNormals_.col(i), nodalNormals_.col(j), coordinates.col(j) - coordinates.col(i));
+      fixedCorrections_[s][e] =
+          creaseEdges_[s][e] ? Eigen::Vector3d::Zero()
+                             : nagataFixedTangentialTerm(cornerNormals_[s][nagataEdgeStart(e)],
+                                                         cornerNormals_[s][nagataEdgeEnd(e)],
+                                                         coordinates.col(j) - coordinates.col(i));
     }
   }
 }
 
 NodalNormals MasterSurface::segmentNormals(int segment) const {
   NodalNormals normals;
-  for (int k = 0; k < 4; ++k) normals[k] = nodalNormals_.col(segments_(segment, k));
+  for (int k = 0; k < 4; ++k) normals[k] = cornerNormals_[segment][k];
   normals.tangentialScale = {0, 0, 0, 0};  // the second term is in fixedCorrection
   normals.fixedCorrection = fixedCorrections_[segment];
+  normals.straight = creaseEdges_[segment];
   return normals;
 }
 

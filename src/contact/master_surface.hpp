@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <numbers>
 #include <unordered_map>
 #include <vector>
 
@@ -24,6 +25,11 @@ struct SegmentProjection {
   bool projectionBrokeDown = false;
   bool found() const { return segment >= 0; }
 };
+
+// The smoothing keeps an edge sharp where the facets turn by more than this (30 degrees): a
+// meshed curved surface has facet angles well below it (the ironing die 7, a ball of 8 segments
+// per quarter 11), a tool's edge or a box corner (90) far above. Deck: crease= (degrees).
+constexpr double kDefaultCreaseAngle = 30.0 * std::numbers::pi / 180.0;
 
 class MasterSurface {
  public:
@@ -45,11 +51,24 @@ class MasterSurface {
   bool smooth() const { return smooth_; }
   // Free edges where the contact force fades out (contact_point.hpp, kFreeEdgeBand).
   void setFadingEdges(bool fading) { fadingEdges_ = fading; }
+  // Edges across which the facets turn by more than this angle (radians) are creases: kept
+  // sharp by the smoothing (updateNormals).
+  void setCreaseAngle(double radians) {
+    creaseAngle_ = radians;
+    creaseEdges_.clear();
+  }
+  double creaseAngle() const { return creaseAngle_; }
+  // Which shared edges are creases, from `reference` (the mesh as given), kept until the crease
+  // angle changes. updateNormals finds them on its own coordinates if this was not called.
+  void findCreases(const Eigen::Matrix3Xd& reference);
+  int creaseCount() const;
   // Nodal normals of the surface at `coordinates`: at each node the average of the adjacent
   // segments' corner normals weighted by their corner angles (Thuermer & Wuethrich 1998; on a
   // mesh symmetric about the node, e.g. a uniform one on a cylinder, the exact normal up to
-  // O(h^2)).
+  // O(h^2)), taken separately on each side of a crease; crease edges stay straight.
   void updateNormals(const Eigen::Matrix3Xd& coordinates);
+  // Whether edge e of `segment` is a crease (after updateNormals).
+  bool crease(int segment, int edge) const { return creaseEdges_[segment][edge]; }
   NodalNormals segmentNormals(int segment) const;
 
   // Rebuilds the bucket grid for the current coordinates (once per step or when points get
@@ -68,6 +87,8 @@ class MasterSurface {
   SegmentProjection search(const Eigen::Vector3d& point, const Eigen::Matrix3Xd& coordinates) const;
 
  private:
+  void cornerNormalsOf(const Eigen::Matrix3Xd& coordinates, std::vector<Eigen::Vector3d>& weighted,
+                       std::vector<Eigen::Vector3d>& unit) const;
   // Whether a projection parameter lies on the segment (up to `tolerance` beyond a shared edge),
   // or just beyond a free surface edge.
   bool accepts(int segment, const Eigen::Vector2d& xi, double tolerance) const;
@@ -93,7 +114,10 @@ class MasterSurface {
   shape::SurfaceType type_ = shape::SurfaceType::Quad4;
   bool smooth_ = false;
   bool fadingEdges_ = false;
-  Eigen::Matrix3Xd nodalNormals_;  // per mesh node (zero off the surface)
+  double creaseAngle_ = kDefaultCreaseAngle;
+  // Per segment corner, the normal of its fan (the node's normal unless the node is on a crease).
+  std::vector<std::array<Eigen::Vector3d, 4>> cornerNormals_;
+  std::vector<std::array<bool, 4>> creaseEdges_;  // per segment edge
   // Per segment edge, the tangential term of Nagata's c (nagata.hpp) from updateNormals().
   std::vector<std::array<Eigen::Vector3d, 4>> fixedCorrections_;
   Connectivity segments_;

@@ -105,11 +105,15 @@ struct NodalNormals {
   // Per edge, a correction added to C_e d (nagataFixedTangentialTerm; zero: c = C_e d).
   std::array<Eigen::Vector3d, 4> fixedCorrection{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(),
                                                  Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
+  // Per edge, a crease of the master (MasterSurface::updateNormals): the edge stays straight
+  // (c = 0), the same from both sides, whose corner normals there differ.
+  std::array<bool, 4> straight{false, false, false, false};
   Eigen::Vector3d& operator[](int k) { return normal[k]; }
   const Eigen::Vector3d& operator[](int k) const { return normal[k]; }
   auto begin() { return normal.begin(); }
   auto end() { return normal.end(); }
   Eigen::Matrix3d edgeMatrix(int e) const {
+    if (straight[e]) return Eigen::Matrix3d::Zero();
     return nagataEdgeMatrix(normal[nagataEdgeStart(e)], normal[nagataEdgeEnd(e)],
                             tangentialScale[e]);
   }

@@ -21,6 +21,8 @@ class SegmentTracker {
   const MasterSurface& master() const { return master_; }
   // Smoothed master (nagata.hpp): switch on, and the nodal normals for a step.
   void setSmooth(bool smooth) { master_.setSmooth(smooth); }
+  void setCreaseAngle(double radians) { master_.setCreaseAngle(radians); }
+  void findCreases(const Eigen::Matrix3Xd& reference) { master_.findCreases(reference); }
   void setFadingEdges(bool fading) { master_.setFadingEdges(fading); }
   void updateNormals(const Eigen::Matrix3Xd& x) { master_.updateNormals(x); }
 

@@ -189,6 +189,11 @@ void handleContact(const ParsedLine& line, DeckState& state) {
          "surface=smooth applies to sts and nts pairs only (stas integrates on the "
          "master's own segments)");
   }
+  contact.creaseDegrees = line.number("crease");
+  if (line.given("crease") && contact.masterSurface != ContactSpec::MasterSurface::Smooth) {
+    fail(line.value("crease").where,
+         "crease= applies to surface=smooth only (a faceted master keeps every edge as meshed)");
+  }
   contact.masterEdge = choiceValue(masterEdges(), line.text("edge"));
   if (contact.kind == ContactSpec::Kind::SegmentToAnalytical && line.given("edge")) {
     fail(line.value("edge").where, "edge= applies to sts and nts pairs only");

@@ -245,6 +245,11 @@ KeywordDecl contactKeyword() {
                      "sts, nts: the master segments as meshed, or smoothed (Nagata patches "
                      "over nodal normals, Quad4 masters)")
                .withDefault("faceted"),
+           numberValue("crease",
+                       "surface=smooth: edges where the master's facets meet at more than this "
+                       "angle (degrees) stay sharp, as meshed")
+               .withRange(Range::between(0, false, 180, true))
+               .withDefault("30"),
            enumValue("edge", choiceNames(masterEdges()),
                      "sts, nts: beyond the master's free edges no force (sharp), or a force "
                      "fading smoothly to zero over 10% of a segment (fade)")
@@ -276,7 +281,9 @@ KeywordDecl contactKeyword() {
           "converged configuration at the start of each step, held fixed over the step): "
           "search, projection, gap, normal, curvature and the tangent (exact for the fixed "
           "normals) then follow the C0 surface with continuous normals at the nodes "
-          "(docs/verification/smooth_master.md). integration=segments splits each slave "
+          "(docs/verification/smooth_master.md); edges where the facets meet at more than "
+          "crease= degrees stay sharp (straight, a normal on each side), so a tool's edges "
+          "and corners keep their shape. integration=segments splits each slave "
           "segment, in its parameter plane, by the images of the master segments it overlaps "
           "(segmentation as in mortar methods) and puts a triangle rule on every piece "
           "(points=1, 2, 3 or more: 1, 3 or 7 points per triangle; an unsplit segment keeps "

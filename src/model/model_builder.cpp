@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <numbers>
 #include <set>
 
 #include "common/errors.hpp"
@@ -189,6 +190,7 @@ contact::ContactPairConfig pairConfig(const ContactSpec& spec) {
                            : contact::TangentMode::Paper;
   config.parts = contactTangentParts(spec.parts);
   config.smoothMaster = spec.masterSurface == ContactSpec::MasterSurface::Smooth;
+  config.creaseAngle = spec.creaseDegrees * std::numbers::pi / 180;
   config.fadingEdges = spec.masterEdge == ContactSpec::MasterEdge::Fade;
   config.segmentIntegration = spec.integration == ContactSpec::Integration::Segments;
   return config;
@@ -266,10 +268,12 @@ std::unique_ptr<contact::ContactPair> makePair(const ContactSpec& spec, const Pr
   }
   const FaceSet& slave = requireFaceSet(mesh, spec.slave, spec.where, "slave");
   requireAttached(slave, active, spec.where);
-  if (spec.kind == ContactSpec::Kind::NodeToSegment) {
-    return contact::ContactPair::nodeToSegment(config, mesh, master, slave);
-  }
-  return contact::ContactPair::segmentToSegment(config, master, slave);
+  std::unique_ptr<contact::ContactPair> pair =
+      spec.kind == ContactSpec::Kind::NodeToSegment
+          ? contact::ContactPair::nodeToSegment(config, mesh, master, slave)
+          : contact::ContactPair::segmentToSegment(config, master, slave);
+  if (config.smoothMaster) pair->findCreases(mesh.coordinates);
+  return pair;
 }
 
 }  // namespace

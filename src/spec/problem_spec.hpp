@@ -134,6 +134,8 @@ struct ContactSpec {
   // over nodal normals (contact/nagata.hpp; sts and nts with Quad4 masters), issue 16 part 2.
   enum class MasterSurface { Faceted, Smooth };
   MasterSurface masterSurface = MasterSurface::Faceted;
+  // Smooth: edges across which the facets turn by more than this stay sharp (crease=, degrees).
+  double creaseDegrees = 30;
   // Sharp: a slave point beyond the master's free edge (by more than 1% of the half segment) has
   // no contact force, as in the paper. Fade: the force falls smoothly to zero over a band of 10%
   // of the segment beyond it (contact/contact_point.hpp, kFreeEdgeBand; issue 14).

@@ -10,6 +10,8 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <numbers>
+#include <vector>
 
 #include "contact/geometry.hpp"
 #include "contact/master_surface.hpp"
@@ -393,6 +395,153 @@ TEST(NagataPatch, ProjectionOnIroningDieSegmentAfterElasticRotation) {
   const SurfaceFrame<double> facet =
       surfaceFrame<double>(shape::SurfaceType::Quad4, die.current, flat.xi[0], flat.xi[1]);
   EXPECT_LT(std::abs(distance - (die.point - facet.rho).norm()), 0.0056);
+}
+
+// A master surface extruded along y from a profile in the x-z plane (profile nodes i, rows y =
+// 0, 0.5, 1): segment (row a, profile i) has the nodes (a, i), (a, i+1), (a+1, i+1), (a+1, i),
+// so that a profile running along +x faces +z.
+struct ExtrudedMaster {
+  Eigen::Matrix3Xd x;
+  FaceSet faces;
+  int profileNodes = 0;
+  explicit ExtrudedMaster(const std::vector<Eigen::Vector2d>& profile) {
+    profileNodes = static_cast<int>(profile.size());
+    const int m = profileNodes - 1;
+    x.resize(3, 3 * profileNodes);
+    for (int a = 0; a < 3; ++a) {
+      for (int i = 0; i < profileNodes; ++i) {
+        x.col(a * profileNodes + i) = Vector3d(profile[i].x(), 0.5 * a, profile[i].y());
+      }
+    }
+    faces.type = CellType::Quad4;
+    faces.connectivity.resize(2 * m, 4);
+    for (int a = 0; a < 2; ++a) {
+      for (int i = 0; i < m; ++i) {
+        const int base = a * profileNodes + i, up = base + profileNodes;
+        faces.connectivity.row(segment(a, i)) << base, base + 1, up + 1, up;
+      }
+    }
+  }
+  int segment(int row, int i) const { return row * (profileNodes - 1) + i; }
+};
+
+SurfaceFrame<double> smoothFrame(const MasterSurface& master, const Eigen::Matrix3Xd& x,
+                                 int segment, double a, double b) {
+  const NodalNormals normals = master.segmentNormals(segment);
+  return surfaceFrame<double>(shape::SurfaceType::Quad4, master.segmentNodes(segment, x), a, b,
+                              &normals);
+}
+
+// A box edge (a flat top z = 0 meeting the flat side x = 0 at 90 degrees): the smoothed surface
+// is the box itself, flat on both faces up to the edge, with each face's own normal. Without
+// creases (the smoothing before: one averaged normal per node) the top bulged by 0.1 next to the
+// edge and tilted its normal by up to 45 degrees: a sharp tool silently rounded.
+TEST(NagataPatch, SmoothingKeepsABoxEdgeSharp) {
+  const ExtrudedMaster box({{-2, 0}, {-1, 0}, {0, 0}, {0, -1}, {0, -2}});
+  MasterSurface master(box.faces);
+  master.setSmooth(true);
+  master.updateNormals(box.x);
+  for (int a = 0; a < 2; ++a) {
+    for (int i = 0; i < 4; ++i) {
+      const int s = box.segment(a, i);
+      EXPECT_EQ(master.crease(s, 1), i == 1) << s;  // edge 1: xi1 = +1, toward the next node
+      EXPECT_EQ(master.crease(s, 3), i == 2) << s;
+      EXPECT_FALSE(master.crease(s, 0) || master.crease(s, 2)) << s;
+      const bool top = i < 2;
+      for (double u : {-1.0, -0.4, 0.3, 0.8, 1.0}) {
+        for (double v : {-1.0, 0.2, 1.0}) {
+          const SurfaceFrame<double> f = smoothFrame(master, box.x, s, u, v);
+          EXPECT_LT(std::abs(top ? f.rho.z() : f.rho.x()), 1e-15) << s << " " << u;
+          EXPECT_LT((f.normal - (top ? Vector3d::UnitZ() : Vector3d::UnitX())).norm(), 1e-15);
+        }
+      }
+    }
+  }
+  master.setCreaseAngle(std::numbers::pi);  // no crease anywhere: the smoothing without them
+  master.updateNormals(box.x);
+  double bulge = 0;
+  for (double u = -1; u <= 1.0001; u += 0.1) {
+    bulge = std::max(bulge, std::abs(smoothFrame(master, box.x, box.segment(0, 1), u, 0).rho.z()));
+  }
+  EXPECT_GT(bulge, 0.05);
+}
+
+// Two arcs (facets turning by 10 degrees) meeting at a ridge where the profile turns by 60
+// degrees. Away from the ridge the smoothing is as before; at the ridge nodes each side has its
+// own normal (the average over its own facets only), the ridge edges stay straight and shared,
+// and the curved edges that end on the ridge are still shared by the segments on both sides of
+// them (C0: the segments of one side use the same normal at the ridge node).
+TEST(NagataPatch, SmoothingKeepsARidgeAndStaysWatertightAroundIt) {
+  std::vector<Eigen::Vector2d> profile{{0, 0}};
+  double heading = 0.5;  // radians, from +x toward +z; turning clockwise makes the ridge convex
+  for (int i = 1; i <= 6; ++i) {
+    profile.push_back(profile.back() + 0.5 * Eigen::Vector2d(std::cos(heading), std::sin(heading)));
+    heading -= (i == 3 ? 60.0 : 10.0) * std::numbers::pi / 180;
+  }
+  const ExtrudedMaster ridge(profile);
+  MasterSurface master(ridge.faces);
+  master.setSmooth(true);
+  master.updateNormals(ridge.x);
+  for (int a = 0; a < 2; ++a) {
+    for (int i = 0; i < 6; ++i) {
+      const int s = ridge.segment(a, i);
+      EXPECT_EQ(master.crease(s, 1), i == 2) << s;
+      EXPECT_EQ(master.crease(s, 3), i == 3) << s;
+    }
+  }
+  // The normal each side has at the ridge: that of its own facet (one facet per side along the
+  // profile), 60 degrees apart; the interior nodes keep the average of their two facets.
+  const auto facetNormal = [&](int i) {
+    const Eigen::Vector2d d = profile[i + 1] - profile[i];
+    return Vector3d(-d.y(), 0, d.x()).normalized();
+  };
+  for (int a = 0; a < 2; ++a) {
+    const NodalNormals left = master.segmentNormals(ridge.segment(a, 2));
+    const NodalNormals right = master.segmentNormals(ridge.segment(a, 3));
+    EXPECT_LT((left[1] - facetNormal(2)).norm(), 1e-14);
+    EXPECT_LT((right[0] - facetNormal(3)).norm(), 1e-14);
+    EXPECT_LT((left[0] - (facetNormal(1) + facetNormal(2)).normalized()).norm(), 1e-14);
+    EXPECT_NEAR(std::acos(left[1].dot(right[0])), 60 * std::numbers::pi / 180, 1e-12);
+  }
+  double ridgeOffChord = 0, ridgeMismatch = 0, sideMismatch = 0, sideOffChord = 0;
+  for (double t = -1; t <= 1.0001; t += 0.1) {
+    // The ridge edge (along y), from its two sides: straight, so on the chord x = const.
+    const SurfaceFrame<double> l = smoothFrame(master, ridge.x, ridge.segment(0, 2), 1, t);
+    const SurfaceFrame<double> r = smoothFrame(master, ridge.x, ridge.segment(0, 3), -1, t);
+    ridgeMismatch = std::max(ridgeMismatch, (l.rho - r.rho).norm());
+    ridgeOffChord = std::max(ridgeOffChord, (l.rho - ridge.x.col(3)).cwiseAbs()(0) +
+                                                (l.rho - ridge.x.col(3)).cwiseAbs()(2));
+    // The curved edge (along the profile) from the ridge node, between rows 0 and 1.
+    const SurfaceFrame<double> below = smoothFrame(master, ridge.x, ridge.segment(0, 3), t, 1);
+    const SurfaceFrame<double> above = smoothFrame(master, ridge.x, ridge.segment(1, 3), t, -1);
+    sideMismatch = std::max(sideMismatch, (below.rho - above.rho).norm());
+    const Vector3d chordPoint = 0.5 * (1 - t) * ridge.x.col(ridge.profileNodes + 3) +
+                                0.5 * (1 + t) * ridge.x.col(ridge.profileNodes + 4);
+    sideOffChord = std::max(sideOffChord, (below.rho - chordPoint).norm());
+  }
+  EXPECT_LT(ridgeMismatch, 1e-15);
+  EXPECT_LT(ridgeOffChord, 1e-15);
+  EXPECT_LT(sideMismatch, 1e-15);
+  EXPECT_GT(sideOffChord, 1e-3);  // that edge is curved: smoothing applies there
+}
+
+// Creases are a property of the mesh as given, decided once: a ridge of 25 degrees deformed to
+// 35 stays smooth, and one of 35 flattened to 25 stays sharp (a decision on the deformed
+// surface would switch the geometry between steps wherever a ridge passes the crease angle).
+TEST(NagataPatch, CreasesAreDecidedOnTheMeshAsGiven) {
+  const auto profile = [](double ridgeDegrees) {
+    const double turn = ridgeDegrees * std::numbers::pi / 180;
+    return std::vector<Eigen::Vector2d>{{-1, 0}, {0, 0}, {std::cos(turn), -std::sin(turn)}};
+  };
+  for (const auto& [given, deformed] : {std::pair{25.0, 35.0}, std::pair{35.0, 25.0}}) {
+    const ExtrudedMaster mesh(profile(given));
+    MasterSurface master(mesh.faces);
+    master.setSmooth(true);
+    master.findCreases(mesh.x);
+    master.updateNormals(ExtrudedMaster(profile(deformed)).x);
+    EXPECT_EQ(master.crease(mesh.segment(0, 0), 1), given > 30) << given;
+    EXPECT_EQ(master.creaseCount(), given > 30 ? 2 : 0) << given;
+  }
 }
 
 }  // namespace
