@@ -148,6 +148,9 @@ class ContactPair : public Contribution {
   // many shared edges are creases.
   void findCreases(const Eigen::Matrix3Xd& reference) { tracker_.findCreases(reference); }
   int creaseCount() const { return tracker_.master().creaseCount(); }
+  MasterSurface::FacetTurns facetTurns(const Eigen::Matrix3Xd& reference) const {
+    return tracker_.master().facetTurns(reference);
+  }
 
  private:
   ContactPair(ContactPairConfig config, const FaceSet& master, std::vector<PairPoint> points);

@@ -160,6 +160,19 @@ void MasterSurface::cornerNormalsOf(const Eigen::Matrix3Xd& coordinates,
   }
 }
 
+// The angle by which the facets turn across edge e of segment s (shared with t > s), from the
+// corner normals `unit` of cornerNormalsOf; negative if the edge is free or seen from t's side.
+double MasterSurface::turnAcross(int s, int e, const std::vector<Eigen::Vector3d>& unit) const {
+  const int t = neighbour(s, e);
+  if (t < s) return -1;
+  const int ti = cornerAt(segments_, t, segments_(s, nagataEdgeStart(e)));
+  const int tj = cornerAt(segments_, t, segments_(s, nagataEdgeEnd(e)));
+  if (ti < 0 || tj < 0) return -1;
+  const Eigen::Vector3d mine = unit[4 * s + nagataEdgeStart(e)] + unit[4 * s + nagataEdgeEnd(e)];
+  const Eigen::Vector3d theirs = unit[4 * t + ti] + unit[4 * t + tj];
+  return std::atan2(mine.cross(theirs).norm(), mine.dot(theirs));
+}
+
 // A shared edge across which the facets turn by more than the crease angle stays sharp. Decided
 // once, on the mesh as given (a tool's edges are a property of its design, and a decision
 // repeated on the deformed surface would flip edges near the angle from step to step).
@@ -169,21 +182,32 @@ void MasterSurface::findCreases(const Eigen::Matrix3Xd& reference) {
   creaseEdges_.assign(segmentCount(), {false, false, false, false});
   for (int s = 0; s < segmentCount(); ++s) {
     for (int e = 0; e < 4; ++e) {
+      if (turnAcross(s, e, unit) <= creaseAngle_) continue;
       const int t = neighbour(s, e);
-      if (t < s) continue;  // a free edge, or the pair was seen from t's side
-      const int ti = cornerAt(segments_, t, segments_(s, nagataEdgeStart(e)));
-      const int tj = cornerAt(segments_, t, segments_(s, nagataEdgeEnd(e)));
-      if (ti < 0 || tj < 0) continue;
-      const Eigen::Vector3d mine =
-          unit[4 * s + nagataEdgeStart(e)] + unit[4 * s + nagataEdgeEnd(e)];
-      const Eigen::Vector3d theirs = unit[4 * t + ti] + unit[4 * t + tj];
-      if (std::atan2(mine.cross(theirs).norm(), mine.dot(theirs)) <= creaseAngle_) continue;
       creaseEdges_[s][e] = true;
       for (int f = 0; f < 4; ++f) {
         if (neighbour(t, f) == s) creaseEdges_[t][f] = true;
       }
     }
   }
+}
+
+MasterSurface::FacetTurns MasterSurface::facetTurns(const Eigen::Matrix3Xd& reference) const {
+  std::vector<Eigen::Vector3d> weighted, unit;
+  cornerNormalsOf(reference, weighted, unit);
+  FacetTurns turns;
+  for (int s = 0; s < segmentCount(); ++s) {
+    for (int e = 0; e < 4; ++e) {
+      const double turn = turnAcross(s, e, unit);
+      if (turn < 0) continue;
+      ++turns.sharedEdges;
+      if (turn > kTurningAngle && turn <= creaseAngle_) {
+        ++turns.turning;
+        turns.largest = std::max(turns.largest, turn);
+      }
+    }
+  }
+  return turns;
 }
 
 int MasterSurface::creaseCount() const {

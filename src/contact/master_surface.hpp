@@ -30,6 +30,9 @@ struct SegmentProjection {
 // meshed curved surface has facet angles well below it (the ironing die 7, a ball of 8 segments
 // per quarter 11), a tool's edge or a box corner (90) far above. Deck: crease= (degrees).
 constexpr double kDefaultCreaseAngle = 30.0 * std::numbers::pi / 180.0;
+// A shared edge whose facets turn by more than this (1 degree) is a facet edge of a curved
+// surface, not a round-off kink of a flat one.
+constexpr double kTurningAngle = std::numbers::pi / 180.0;
 
 class MasterSurface {
  public:
@@ -62,6 +65,15 @@ class MasterSurface {
   // angle changes. updateNormals finds them on its own coordinates if this was not called.
   void findCreases(const Eigen::Matrix3Xd& reference);
   int creaseCount() const;
+  // How the facets turn across the shared edges of the mesh as given: a faceted master whose
+  // edges mostly turn by a few degrees is a curved surface cut into facets (run_command.cpp says
+  // so, since points crossing those edges slow Newton down: docs/verification/sliding.md).
+  struct FacetTurns {
+    int sharedEdges = 0;
+    int turning = 0;     // shared edges turning by more than kTurningAngle, up to the crease angle
+    double largest = 0;  // radians, over those
+  };
+  FacetTurns facetTurns(const Eigen::Matrix3Xd& reference) const;
   // Nodal normals of the surface at `coordinates`: at each node the average of the adjacent
   // segments' corner normals weighted by their corner angles (Thuermer & Wuethrich 1998; on a
   // mesh symmetric about the node, e.g. a uniform one on a cylinder, the exact normal up to
@@ -87,6 +99,7 @@ class MasterSurface {
   SegmentProjection search(const Eigen::Vector3d& point, const Eigen::Matrix3Xd& coordinates) const;
 
  private:
+  double turnAcross(int s, int e, const std::vector<Eigen::Vector3d>& unit) const;
   void cornerNormalsOf(const Eigen::Matrix3Xd& coordinates, std::vector<Eigen::Vector3d>& weighted,
                        std::vector<Eigen::Vector3d>& unit) const;
   // Whether a projection parameter lies on the segment (up to `tolerance` beyond a shared edge),

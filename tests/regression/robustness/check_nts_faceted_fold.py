@@ -9,6 +9,7 @@ the whole deck: 100 steps, 566 iterations, no cut-back). Since the twenty-first 
 plain attempt of step 50 ends before the fold, when its residual has stayed above its best for
 four iterations (newton_stall.hpp); the fold's own retry is tested by
 InvertedElement.OneDeepPunchStepIsRetriedWithLineSearch... About 30 s on one thread."""
+import re
 import sys
 
 import stress_script
@@ -24,6 +25,11 @@ if cutbacks:
 if not any(line.startswith("cut-back at step 50 ") for line in retries):
     failures.append("no line-search retry at step 50: the case no longer meets the hard step "
                     "it is meant to test; retries:\n" + "\n".join(retries))
+# The start-up line that points a user at the smoothing (run_command.cpp): the die's cylinder
+# is cut into facets that turn by 7 degrees across every edge along its axis.
+if not re.search(r"contact 'die': the master is a curved surface meshed as facets \(\d+ of \d+ "
+                 r"shared edges turn by more than 1 degree, up to 7\); .*surface=smooth", r.stdout):
+    failures.append("no start-up hint that the die is a curved surface meshed as facets")
 if "completed: 51 steps" not in r.stdout:
     failures.append("the run did not complete 51 steps:\n" + r.stdout[-2000:])
 for f in failures:

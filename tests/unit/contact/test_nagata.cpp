@@ -544,5 +544,28 @@ TEST(NagataPatch, CreasesAreDecidedOnTheMeshAsGiven) {
   }
 }
 
+// How the facets turn (MasterSurface::facetTurns, the faceted master's start-up hint): on the
+// meshed cylinder every edge along the axis turns by the segment angle (0.15) and every edge
+// across it by nothing; a flat master has no turning edge; a box edge turns by more than the
+// crease angle and is no facet edge of a curved surface.
+TEST(NagataPatch, FacetTurnsTellACurvedMeshFromAFlatOneAndAnEdge) {
+  std::vector<Eigen::Vector2d> arc, flat, box{{-2, 0}, {-1, 0}, {0, 0}, {0, -1}};
+  for (int i = 0; i <= 8; ++i) {
+    arc.push_back({std::sin(0.15 * i - 0.5), -std::cos(0.15 * i - 0.5)});
+    flat.push_back({0.3 * i, 0});
+  }
+  const auto turns = [](const std::vector<Eigen::Vector2d>& profile) {
+    const ExtrudedMaster mesh(profile);
+    return MasterSurface(mesh.faces).facetTurns(mesh.x);
+  };
+  const MasterSurface::FacetTurns curved = turns(arc);
+  EXPECT_EQ(curved.sharedEdges, 7 * 2 + 8);  // 7 along the axis per row, 8 between the rows
+  EXPECT_EQ(curved.turning, 7 * 2);
+  EXPECT_NEAR(curved.largest, 0.15, 1e-13);
+  EXPECT_EQ(turns(flat).turning, 0);
+  EXPECT_EQ(turns(box).turning, 0);
+  EXPECT_EQ(turns(box).sharedEdges, 2 * 2 + 3);
+}
+
 }  // namespace
 }  // namespace cc::contact
