@@ -7,8 +7,15 @@ peak memory per process, the time of element assembly, contact (search + points)
 solve per process, and the bytes moved between processes per Newton iteration.
 
     /usr/bin/python3 scripts/bench_mpi.py [--sizes 57k,125k] [--build build]
-        [--runs mumps_np1,mumps_np2,gamg_np1,gamg_np2] [--press-only] [--pin] [--twice] [--cores]
-        [--predictor] [--output FILE.json]
+        [--runs mumps_np1,mumps_np2,gamg_np1,gamg_np2,amg_np2] [--press-only] [--pin] [--twice]
+        [--cores] [--predictor] [--output FILE.json]
+
+The sizes bulk79k, bulk341k and bulk1.2M are the 3D bulk geometry of issue 13
+(input/performance/bulk_79k.deck with its slab meshed 54 x 24 x 18, 90 x 40 x 30, 135 x 60 x 45),
+whose target run is
+
+    /usr/bin/python3 scripts/bench_mpi.py --sizes bulk1.2M --runs amg_np2 \
+        --output docs/performance/bulk.json
 
 --press-only runs the press step alone (for 1.2 M); --pin pins every run to cores (the two cores of
 the development machine differ in speed by 1.45x); --twice runs two 1-process copies at once (is
@@ -27,6 +34,8 @@ import sys
 import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+# The bulk geometry's sizes: the slab's elements along x, y, z in bulk_79k.deck's mesh line.
+BULK_SLAB = {"bulk79k": (54, 24, 18), "bulk341k": (90, 40, 30), "bulk1.2M": (135, 60, 45)}
 
 
 def run(command, timeout):
@@ -90,7 +99,8 @@ def configurations(args, deck, work):
                                  ("mumps_np1", [], "mumps"),
                                  ("mumps_np2", mpirun + ["-np", "2"], "mumps"),
                                  ("gamg_np1", [], "gamg"),
-                                 ("gamg_np2", mpirun + ["-np", "2"], "gamg")):
+                                 ("gamg_np2", mpirun + ["-np", "2"], "gamg"),
+                                 ("amg_np2", mpirun + ["-np", "2"], "amg")):
         for pinned, pin in pinnings(args, name):
             results = os.path.join(work, f"{os.path.basename(deck)[:-5]}_{pinned}.h5")
             command = pin + prefix + [covcontact, "run", deck, "-o", results, "-q", "--cost",
@@ -136,9 +146,10 @@ def pinnings(args, name):
         yield name, []
 
 
-def deck_copy(deck, work, press_only=False, predictor=False):
+def deck_copy(deck, work, press_only=False, predictor=False, size=None):
     """A copy of the deck in the work directory with its mesh path made absolute: its sliding
-    phase dropped (press_only), `newton predictor=extrapolate` added after `solve` (predictor)."""
+    phase dropped (press_only), `newton predictor=extrapolate` added after `solve` (predictor),
+    the bulk deck's slab meshed for `size` (BULK_SLAB)."""
     with open(deck) as stream:
         lines = stream.read().splitlines()
     steps = [i for i, line in enumerate(lines) if line.strip().startswith("steps ")]
@@ -156,8 +167,14 @@ def deck_copy(deck, work, press_only=False, predictor=False):
         if line.startswith("mesh \""):
             relative = line.split('"')[1]
             lines[i] = line.replace(relative, os.path.normpath(os.path.join(folder, relative)), 1)
+            if size in BULK_SLAB:
+                given = "nx=54 ny=24 nz=18"
+                if given not in lines[i]:
+                    sys.exit(f"{deck}: the mesh line no longer says {given}")
+                lines[i] = lines[i].replace(given, "nx={} ny={} nz={}".format(*BULK_SLAB[size]))
     suffix = ("_press" if press_only else "") + ("_predictor" if predictor else "")
-    copy = os.path.join(work, os.path.basename(deck)[:-5] + suffix + ".deck")
+    name = size if size in BULK_SLAB else os.path.basename(deck)[:-5]
+    copy = os.path.join(work, name + suffix + ".deck")
     with open(copy, "w") as stream:
         stream.write("\n".join(lines) + "\n")
     return copy
@@ -211,8 +228,10 @@ def main():
     cores = core_speeds(args) if args.cores else previous.get("core_cpu_s")
     for size in args.sizes.split(","):
         deck = os.path.join(ROOT, "input", "performance", f"scaling_{size}.deck")
-        if args.press_only or args.predictor:
-            deck = deck_copy(deck, work, args.press_only, args.predictor)
+        if size in BULK_SLAB:
+            deck = os.path.join(ROOT, "input", "performance", "bulk_79k.deck")
+        if args.press_only or args.predictor or size in BULK_SLAB:
+            deck = deck_copy(deck, work, args.press_only, args.predictor, size)
         runs = {}
         for name, command in configurations(args, deck, work):
             if name.split("_core")[0].removesuffix("_bound") not in args.runs.split(","):
@@ -222,7 +241,7 @@ def main():
             if name.endswith("_np1") and args.twice:
                 print(f"{size} {name} twice at once", file=sys.stderr, flush=True)
                 runs[name + "_twice"] = run_twice_at_once(command, args.timeout)
-        for solver in ("mumps", "gamg"):
+        for solver in ("mumps", "gamg", "amg"):
             if f"{solver}_np1" in runs and f"{solver}_np2" in runs:
                 runs[f"speedup_{solver}_np1_over_np2"] = speedups(runs[f"{solver}_np1"],
                                                                   runs[f"{solver}_np2"])
