@@ -27,8 +27,9 @@ struct SegmentProjection {
 };
 
 // The smoothing keeps an edge sharp where the facets turn by more than this (30 degrees): a
-// meshed curved surface has facet angles well below it (the ironing die 7, a ball of 8 segments
-// per quarter 11), a tool's edge or a box corner (90) far above. Deck: crease= (degrees).
+// curved surface meshed for contact turns by far less per facet (the ironing die 7 degrees, the
+// committed ball decks at most 11), a tool's edge or a box corner (90) by far more. Deck:
+// crease= (degrees).
 constexpr double kDefaultCreaseAngle = 30.0 * std::numbers::pi / 180.0;
 // A shared edge whose facets turn by more than this (1 degree) is a facet edge of a curved
 // surface, not a round-off kink of a flat one.

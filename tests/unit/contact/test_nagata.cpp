@@ -434,8 +434,8 @@ SurfaceFrame<double> smoothFrame(const MasterSurface& master, const Eigen::Matri
 
 // A box edge (a flat top z = 0 meeting the flat side x = 0 at 90 degrees): the smoothed surface
 // is the box itself, flat on both faces up to the edge, with each face's own normal. Without
-// creases (the smoothing before: one averaged normal per node) the top bulged by 0.1 next to the
-// edge and tilted its normal by up to 45 degrees: a sharp tool silently rounded.
+// creases (the smoothing before: one averaged normal per node, 45 degrees off both faces at the
+// edge) the top bulges by more than 0.05 next to the edge: a sharp tool silently rounded.
 TEST(NagataPatch, SmoothingKeepsABoxEdgeSharp) {
   const ExtrudedMaster box({{-2, 0}, {-1, 0}, {0, 0}, {0, -1}, {0, -2}});
   MasterSurface master(box.faces);
