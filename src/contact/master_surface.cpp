@@ -160,16 +160,25 @@ void MasterSurface::cornerNormalsOf(const Eigen::Matrix3Xd& coordinates,
   }
 }
 
+// Edge e of segment s seen once per pair (from the lower segment): the neighbour t > s and its
+// corners at the edge's start and end; t = -1 for a free edge or the other side of a pair.
+MasterSurface::SharedEdge MasterSurface::sharedEdge(int s, int e) const {
+  const int t = neighbour(s, e);
+  if (t < s) return {};
+  const int ti = cornerAt(segments_, t, segments_(s, nagataEdgeStart(e)));
+  const int tj = cornerAt(segments_, t, segments_(s, nagataEdgeEnd(e)));
+  if (ti < 0 || tj < 0) return {};
+  return {t, ti, tj};
+}
+
 // The angle by which the facets turn across edge e of segment s (shared with t > s), from the
 // corner normals `unit` of cornerNormalsOf; negative if the edge is free or seen from t's side.
 double MasterSurface::turnAcross(int s, int e, const std::vector<Eigen::Vector3d>& unit) const {
-  const int t = neighbour(s, e);
-  if (t < s) return -1;
-  const int ti = cornerAt(segments_, t, segments_(s, nagataEdgeStart(e)));
-  const int tj = cornerAt(segments_, t, segments_(s, nagataEdgeEnd(e)));
-  if (ti < 0 || tj < 0) return -1;
+  const SharedEdge edge = sharedEdge(s, e);
+  if (edge.other < 0) return -1;
   const Eigen::Vector3d mine = unit[4 * s + nagataEdgeStart(e)] + unit[4 * s + nagataEdgeEnd(e)];
-  const Eigen::Vector3d theirs = unit[4 * t + ti] + unit[4 * t + tj];
+  const Eigen::Vector3d theirs =
+      unit[4 * edge.other + edge.otherStart] + unit[4 * edge.other + edge.otherEnd];
   return std::atan2(mine.cross(theirs).norm(), mine.dot(theirs));
 }
 
@@ -228,13 +237,12 @@ void MasterSurface::updateNormals(const Eigen::Matrix3Xd& coordinates) {
   for (int c = 0; c < corners; ++c) parent[c] = c;
   for (int s = 0; s < segmentCount(); ++s) {
     for (int e = 0; e < 4; ++e) {
-      const int t = neighbour(s, e);
-      if (t < s || creaseEdges_[s][e]) continue;
-      const int ti = cornerAt(segments_, t, segments_(s, nagataEdgeStart(e)));
-      const int tj = cornerAt(segments_, t, segments_(s, nagataEdgeEnd(e)));
-      if (ti < 0 || tj < 0) continue;
-      parent[fanRoot(parent, 4 * s + nagataEdgeStart(e))] = fanRoot(parent, 4 * t + ti);
-      parent[fanRoot(parent, 4 * s + nagataEdgeEnd(e))] = fanRoot(parent, 4 * t + tj);
+      const SharedEdge edge = sharedEdge(s, e);
+      if (edge.other < 0 || creaseEdges_[s][e]) continue;
+      parent[fanRoot(parent, 4 * s + nagataEdgeStart(e))] =
+          fanRoot(parent, 4 * edge.other + edge.otherStart);
+      parent[fanRoot(parent, 4 * s + nagataEdgeEnd(e))] =
+          fanRoot(parent, 4 * edge.other + edge.otherEnd);
     }
   }
   // Each fan's normal, summed in segment order (without creases: the node's average as before).

@@ -100,6 +100,11 @@ class MasterSurface {
   SegmentProjection search(const Eigen::Vector3d& point, const Eigen::Matrix3Xd& coordinates) const;
 
  private:
+  struct SharedEdge {
+    int other = -1;                      // the neighbouring segment
+    int otherStart = -1, otherEnd = -1;  // its corners at the edge's start and end
+  };
+  SharedEdge sharedEdge(int s, int e) const;
   double turnAcross(int s, int e, const std::vector<Eigen::Vector3d>& unit) const;
   void cornerNormalsOf(const Eigen::Matrix3Xd& coordinates, std::vector<Eigen::Vector3d>& weighted,
                        std::vector<Eigen::Vector3d>& unit) const;
