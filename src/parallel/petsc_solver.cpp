@@ -119,6 +119,11 @@ class PetscSolver final : public LinearSolver {
   void setIterationLimit(int iterations) override { maxIterations_ = iterations; }
   void setLayout(const SystemLayout& layout) override { layout_ = layout; }
   KrylovReport lastSolve() const override { return last_; }
+  int matrixBlockSize() const override {
+    PetscInt blockSize = 1;
+    if (matrix_) check(MatGetBlockSize(matrix_, &blockSize), "MatGetBlockSize");
+    return static_cast<int>(blockSize);
+  }
 
   void analyzePattern(const SparseMatrix& matrix) override {
     if (!matrix.isCompressed() || matrix.rows() != matrix.cols()) {
@@ -462,17 +467,28 @@ class PetscSolver final : public LinearSolver {
     check(MatCreate(PETSC_COMM_WORLD, &matrix_), "MatCreate");
     check(MatSetSizes(matrix_, local, local, size_, size_), "MatSetSizes");
     check(MatSetType(matrix_, MATAIJ), "MatSetType");
-    if (embedded_) check(MatSetBlockSize(matrix_, 3), "MatSetBlockSize");
-    std::vector<PetscInt> diagonal(static_cast<std::size_t>(local)), offDiagonal(diagonal.size());
+    // MatXAIJSetPreallocation gives the matrix the block size it is called with, so the embedded
+    // system's row lengths go per node block of 3 rows: that block size is what BoomerAMG's
+    // nodal coarsening and GAMG's aggregation of the rigid-body modes work on. Until the 28th
+    // session 1 was passed here, after MatSetBlockSize(3), and one process solved without it
+    // (the distributed path keeps it through PETSc's preallocator).
+    const PetscInt blockSize = embedded_ ? 3 : 1;
+    const std::size_t blocks = static_cast<std::size_t>(local / blockSize);
+    std::vector<PetscInt> diagonal(blocks, 0), offDiagonal(blocks, 0);
     for (PetscInt r = first; r < last; ++r) {
+      PetscInt inBlock = 0, offBlock = 0;
       for (PetscInt k = rowStart_[r]; k < rowStart_[r + 1]; ++k) {
         const PetscInt c = columns_[static_cast<std::size_t>(k)];
-        ++(c >= first && c < last ? diagonal : offDiagonal)[static_cast<std::size_t>(r - first)];
+        ++(c >= first && c < last ? inBlock : offBlock);
       }
+      // Lengths in blocks of 3 columns, the longest row of the node block's three.
+      const std::size_t block = static_cast<std::size_t>((r - first) / blockSize);
+      diagonal[block] = std::max(diagonal[block], (inBlock + blockSize - 1) / blockSize);
+      offDiagonal[block] = std::max(offDiagonal[block], (offBlock + blockSize - 1) / blockSize);
     }
-    check(
-        MatXAIJSetPreallocation(matrix_, 1, diagonal.data(), offDiagonal.data(), nullptr, nullptr),
-        "MatXAIJSetPreallocation");
+    check(MatXAIJSetPreallocation(matrix_, blockSize, diagonal.data(), offDiagonal.data(), nullptr,
+                                  nullptr),
+          "MatXAIJSetPreallocation");
     check(MatSetOption(matrix_, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE), "MatSetOption");
   }
 

@@ -118,6 +118,9 @@ class LinearSolver {
   virtual void setIterationLimit(int) {}
   virtual void setLayout(const SystemLayout&) {}
   virtual KrylovReport lastSolve() const { return {}; }
+  // Rows per block of the matrix the backend solves: 3 where an iterative backend sees the
+  // mesh's node blocks (SystemLayout), else 1.
+  virtual int matrixBlockSize() const { return 1; }
 
   const LinearSolverStatistics& statistics() const { return statistics_; }
 
