@@ -334,7 +334,7 @@ KeywordDecl solveKeyword() {
           .summary = "Opens the solution block; its commands run in order until `end`.",
           .parameters = {enumValue("solver", choiceNames(linearSolverMethods()),
                                    "linear solver of the Newton systems: auto (cholmod below "
-                                   "50 000 free equations, gamg above), cholmod "
+                                   "50 000 free equations, amg above), cholmod "
                                    "(CHOLMOD, UMFPACK for unsymmetric tangents), umfpack, "
                                    "mumps, superlu_dist (direct, PETSc), amg (GMRES + hypre "
                                    "BoomerAMG), gamg (GMRES + PETSc GAMG)")

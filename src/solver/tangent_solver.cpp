@@ -108,10 +108,10 @@ bool TangentSolver::usesPetsc(Eigen::Index size) {
                      method_ == Method::Amg || method_ == Method::Gamg || iterativeBySize;
   if (petsc && !petsc_.solver) {
     const PetscMethod petscMethod = method_ == Method::SuperluDist ? PetscMethod::SuperluDist
-                                    : method_ == Method::Amg       ? PetscMethod::BoomerAmg
-                                    : method_ == Method::Gamg || iterativeBySize
-                                        ? PetscMethod::Gamg
-                                        : PetscMethod::Mumps;
+                                    : method_ == Method::Amg || iterativeBySize
+                                        ? PetscMethod::BoomerAmg
+                                    : method_ == Method::Gamg ? PetscMethod::Gamg
+                                                              : PetscMethod::Mumps;
     petsc_.solver = makePetscSolver(petscMethod);
     petsc_.solver->setLayout(layout_);
   }

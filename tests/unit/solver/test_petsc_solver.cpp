@@ -267,6 +267,28 @@ TEST(PetscSolver, AutoKeepsTheDirectSolversBelowTheBreakEven) {
                                          model.system.free.rows(), kIterativeBreakEven));
 }
 
+// Above the break-even auto solves with GMRES + BoomerAMG on the mesh's node blocks (it chose
+// GAMG until the 28th session, which stalled on the bulk die: tangent_solver.hpp).
+TEST(PetscSolver, AutoSolvesLargeSystemsWithBoomerAmgOnNodeBlocks) {
+  const Lattice model = lattice(26);  // 26^3 nodes, the bottom layer fixed: 50 700 equations
+  ASSERT_GE(model.system.free.rows(), kIterativeBreakEven);
+  const Eigen::VectorXd rhs = rightHandSide(model.system.free.rows());
+  TangentSolver automatic(LinearSolverSpec::Method::Auto);
+  automatic.setLayout(model.layout);
+  automatic.setForcing(1e-8);
+  automatic.factorize(model.system);
+  EXPECT_EQ(automatic.activeBackend(), "GMRES+BoomerAMG");
+  EXPECT_TRUE(automatic.iterative());
+  EXPECT_EQ(automatic.choice().rfind(fmt::format("auto -> GMRES+BoomerAMG ({} equations >= {}",
+                                                 model.system.free.rows(), kIterativeBreakEven),
+                                     0),
+            0u)
+      << automatic.choice();
+  const Eigen::VectorXd x = automatic.solve(rhs);
+  EXPECT_LE((model.system.free * x - rhs).norm() / rhs.norm(), 1e-8);
+  EXPECT_EQ(automatic.statistics().krylovFallbacks, 0);
+}
+
 TEST(PetscSolver, AutoFactorizesLargeUnsymmetricSystemsWithMumps) {
   // 17^3 nodes: 13 872 equations, above kUnsymmetricMumpsBreakEven; the skew makes the system
   // unsymmetric like a sliding contact tangent. The solution must be UMFPACK's to round-off.
