@@ -27,20 +27,17 @@
 
 namespace cc {
 
-// Free equations from which `solver=auto` solves iteratively with GMRES + BoomerAMG, which since
-// the 28th session sees the mesh's node blocks on one process too (it did not before: its
-// times below were measured without them, GAMG's with scalar aggregation). With them, one
-// thread: the thin 57 k scaling deck BoomerAMG 42.1 s against GAMG 50.6 s (59 and 60 Newton
-// iterations, the direct pair 56); the bulk die (bulk_79k.deck) BoomerAMG 91.3 s, 42
-// iterations, GAMG 1038 s, 102 iterations and a cut-back; on two processes 36.0 against 39.8 s
-// (thin) and 63.8 s, 43 iterations, against 703.5 s, 76 iterations, six stalled Krylov solves
-// and a cut-back (bulk). docs/performance/solvers.md, 28th session. The break-even below was measured before and is likely lower now;
-// it is kept so that every paper and regression deck keeps its direct solver. Measured on dumped
-// tangents of the scaling decks (docs/performance/solvers.md, one thread, CPU seconds per
-// system): 14 k equations UMFPACK 0.6, GAMG 0.7, BoomerAMG 0.6; 45 k equations UMFPACK 2.5
-// (about 1.7 without the analysis that Newton reuses), GAMG 1.8, BoomerAMG 2.7, MUMPS 2.2. The
-// whole 57 k scaling run took 39.8 CPU s with GAMG (59 Newton iterations) against ~65 with
-// CHOLMOD/UMFPACK (56). Every paper and regression deck is far below it (at most ~20 k).
+// Free equations from which `solver=auto` solves iteratively, with GMRES + BoomerAMG. Measured
+// on dumped tangents of the scaling decks (docs/performance/solvers.md, one thread, CPU seconds
+// per system): 14 k equations UMFPACK 0.6, GAMG 0.7, BoomerAMG 0.6; 45 k equations UMFPACK 2.5
+// (about 1.7 without the analysis that Newton reuses), GAMG 1.8, BoomerAMG 2.7, MUMPS 2.2; those
+// AMG times ran without the mesh's node blocks, which one process lost until the 28th session.
+// With them, whole runs, one thread: the thin 57 k scaling deck (45 242 equations) BoomerAMG
+// 42.1-51.4 s, GAMG 50.6 s, the direct pair 53.4 s (59, 60 and 56 Newton iterations): even at
+// 45 k, so the break-even stays. Above it BoomerAMG, not GAMG: on the bulk die (bulk_79k.deck)
+// BoomerAMG 91.3 s and 42 iterations, GAMG 1038 s, 102 iterations and a cut-back; on two
+// processes 36.0 against 39.8 s (thin) and 63.8 s against 703.5 s with six stalled Krylov solves
+// (bulk). Every paper and regression deck is far below it (at most ~20 k).
 inline constexpr Eigen::Index kIterativeBreakEven = 50000;
 static_assert(kIterativeBreakEven == kMemoryBoundSystemFrom,
               "linear_solver.hpp: memory-bound sizes start where the direct solvers end");
