@@ -1,6 +1,6 @@
 // `covcontact run`: deck -> model -> load stepping -> results file, with progress, signal
-// handling (SIGINT/SIGTERM stop after the current iteration) and a closing summary. Under
-// `mpirun -np N` every process runs this same flow on the whole model (model/
+// handling (SIGINT/SIGTERM stop after the current iteration or Krylov iteration) and a closing
+// summary. Under `mpirun -np N` every process runs this same flow on the whole model (model/
 // model_distribution.cpp divides the work); all of them write the one results file together
 // (parallel HDF5, ResultsWriter's ParallelOutput), rank 0 alone prints, errors are agreed on
 // (ProcessGroup::agree) and reported once, and a process that must stop alone ends the whole run

@@ -28,6 +28,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <stdexcept>
 #include <vector>
 
@@ -118,6 +119,7 @@ class PetscSolver final : public LinearSolver {
   void setRelativeTolerance(double tolerance) override { relativeTolerance_ = tolerance; }
   void setIterationLimit(int iterations) override { maxIterations_ = iterations; }
   void setLayout(const SystemLayout& layout) override { layout_ = layout; }
+  void setStopPoll(std::function<bool()> poll) override { stopPoll_ = std::move(poll); }
   KrylovReport lastSolve() const override { return last_; }
   int matrixBlockSize() const override {
     PetscInt blockSize = 1;
@@ -202,6 +204,7 @@ class PetscSolver final : public LinearSolver {
       check(KSPSetTolerances(ksp_, relativeTolerance_, 0.0, 1e5, maxIterations_),
             "KSPSetTolerances");
     }
+    stopped_ = false;
     {
       const OneOpenMpThread oneThread(method_ == PetscMethod::SuperluDist);
       check(KSPSolve(ksp_, rhs_, solution_), "KSPSolve");
@@ -216,6 +219,10 @@ class PetscSolver final : public LinearSolver {
     statistics_.krylovIterations += iterations;
     statistics_.solveSeconds += secondsSince(start);
     ++statistics_.solves;
+    if (stopped_) {
+      throw SolveInterrupted(
+          fmt::format("{}: stopped on request after {} Krylov iterations", name(), iterations));
+    }
     // A direct solve whose residual is far above round-off did not solve the system.
     if (!iterative() && !(last_.relativeResidual <= kDirectResidual))
       reason = KSP_DIVERGED_BREAKDOWN;
@@ -620,6 +627,37 @@ class PetscSolver final : public LinearSolver {
     }
     // Options from the environment (PETSC_OPTIONS, e.g. -cc_amg_ksp_monitor) apply on top.
     check(KSPSetFromOptions(ksp_), "KSPSetFromOptions");
+    if (iterative()) {
+      auto* test = new StopTest{this, nullptr};
+      check(KSPConvergedDefaultCreate(&test->defaultContext), "KSPConvergedDefaultCreate");
+      check(KSPSetConvergenceTest(ksp_, convergedOrStopped, test, destroyStopTest),
+            "KSPSetConvergenceTest");
+    }
+  }
+
+  // PETSc's default convergence test, then the stop poll (setStopPoll): a run asked to stop
+  // leaves a Krylov solve at once rather than after hundreds of iterations. Every process
+  // calls this in step (the residual norm is global), so a collective poll is safe.
+  struct StopTest {
+    PetscSolver* solver;
+    void* defaultContext;
+  };
+  static PetscErrorCode convergedOrStopped(KSP ksp, PetscInt iteration, PetscReal norm,
+                                           KSPConvergedReason* reason, void* context) {
+    auto* test = static_cast<StopTest*>(context);
+    PetscCall(KSPConvergedDefault(ksp, iteration, norm, reason, test->defaultContext));
+    PetscSolver& solver = *test->solver;
+    if (*reason == KSP_CONVERGED_ITERATING && solver.stopPoll_ && solver.stopPoll_()) {
+      solver.stopped_ = true;
+      *reason = KSP_DIVERGED_NULL;
+    }
+    return 0;
+  }
+  static PetscErrorCode destroyStopTest(void* context) {
+    auto* test = static_cast<StopTest*>(context);
+    PetscCall(KSPConvergedDefaultDestroy(test->defaultContext));
+    delete test;
+    return 0;
   }
 
   static void setOption(const char* name, const char* value) {
@@ -741,6 +779,8 @@ class PetscSolver final : public LinearSolver {
   PetscInt maxIterations_ = kMaxKrylovIterations;
   SystemLayout layout_;
   KrylovReport last_;
+  std::function<bool()> stopPoll_;
+  bool stopped_ = false;  // the last solve was left on the stop poll's request
   bool hierarchyBuilt_ = false, rebuildHierarchy_ = false;
   double rateAfterRebuild_ = -1;  // decades per Krylov iteration; negative: not measured yet
   PetscReal laggedRateRatio_ = kLaggedRateRatio;  // or -cc_hierarchy_rate_ratio

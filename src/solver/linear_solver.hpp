@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -80,6 +81,13 @@ class KrylovFailure : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// A Krylov solve left because the run was asked to stop (SIGINT/SIGTERM, LinearSolver::
+// setStopPoll): the iteration is abandoned; no other solver redoes it.
+class SolveInterrupted : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 // The last solve of an iterative backend.
 struct KrylovReport {
   int iterations = 0;
@@ -118,6 +126,10 @@ class LinearSolver {
   virtual void setIterationLimit(int) {}
   virtual void setLayout(const SystemLayout&) {}
   virtual KrylovReport lastSolve() const { return {}; }
+  // Asked between Krylov iterations whether the run is to stop; true ends the solve with
+  // SolveInterrupted. Called on every process in step (a collective poll may reduce); it must
+  // not throw (PETSc calls it).
+  virtual void setStopPoll(std::function<bool()>) {}
   // Rows per block of the matrix the backend solves: 3 where an iterative backend sees the
   // mesh's node blocks (SystemLayout), else 1.
   virtual int matrixBlockSize() const { return 1; }

@@ -117,6 +117,9 @@ Newton::Newton(NonlinearProblem& problem, StepObserver& observer, Clock::time_po
       dumps_(std::move(dumps)) {
   linear_.setFactorReuse(linearSolver.reuseFactor);
   linear_.setNotifier([this](const std::string& line) { observer_.note(line); });
+  // A stop asked for during a long Krylov solve (a million equations: tens of seconds, minutes
+  // when it stalls) ends that solve rather than wait for it (SolveInterrupted below).
+  linear_.setStopPoll([this] { return observer_.stopRequested(); });
 }
 
 void Newton::assembleAt(const Eigen::VectorXd& displacement, const NewtonStep& step,
@@ -396,6 +399,8 @@ NewtonResult Newton::solve(const NewtonStep& step, const NewtonSpec& spec,
         linear_.setForcing(forcing);
       }
       du = linear_.solve(rhs);
+    } catch (const SolveInterrupted&) {
+      return {NewtonResult::Status::Interrupted, iteration, FailureKind::Diverged, "interrupted"};
     } catch (const StepFailure& failure) {
       if (failure.kind() != FailureKind::SingularSystem) {
         return failed(iteration, failure.kind(), failure.what());

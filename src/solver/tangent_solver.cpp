@@ -114,6 +114,7 @@ bool TangentSolver::usesPetsc(Eigen::Index size) {
                                                               : PetscMethod::Mumps;
     petsc_.solver = makePetscSolver(petscMethod);
     petsc_.solver->setLayout(layout_);
+    if (stopPoll_) petsc_.solver->setStopPoll(stopPoll_);
   }
   if (choice_.empty()) {
     const std::string backend = petsc ? petsc_.solver->name() : directSolvers();
@@ -134,6 +135,11 @@ bool TangentSolver::usesPetsc(Eigen::Index size) {
     if (notify_) notify_("linear solver: " + choice_);
   }
   return petsc;
+}
+
+void TangentSolver::setStopPoll(std::function<bool()> poll) {
+  stopPoll_ = std::move(poll);
+  if (petsc_.solver) petsc_.solver->setStopPoll(stopPoll_);
 }
 
 TangentSolver::Backend& TangentSolver::mumpsDirect() {

@@ -84,6 +84,9 @@ class TangentSolver {
   void setFactorReuse(bool reuse) { reuseFactors_ = reuse; }
   // Receives one line for every choice and fallback (printed and logged by the command).
   void setNotifier(std::function<void(const std::string&)> notify) { notify_ = std::move(notify); }
+  // Polled between Krylov iterations (LinearSolver::setStopPoll): true ends the solve with
+  // SolveInterrupted, which solve() passes on instead of falling back to a direct solver.
+  void setStopPoll(std::function<bool()> poll);
   // Factorizes system.free (which must outlive the following solves). Throws
   // StepFailure(SingularSystem) naming what both backends reported.
   void factorize(const SystemMatrices& system);
@@ -150,6 +153,7 @@ class TangentSolver {
   long reuseKrylovIterations_ = 0;
   double reuseSeconds_ = 0;
   std::function<void(const std::string&)> notify_;
+  std::function<bool()> stopPoll_;
 };
 
 }  // namespace cc

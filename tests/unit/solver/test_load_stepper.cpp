@@ -159,6 +159,25 @@ TEST(LoadStepper, InterruptDiscardsTheUnconvergedStep) {
   EXPECT_EQ(observer.iterations.back().step, 2);
 }
 
+TEST(LoadStepper, InterruptDuringAKrylovSolveLeavesTheIterationUnapplied) {
+  // A stop asked for before the first iteration: the iterative solve of that iteration ends
+  // before its first Krylov iteration (the stop poll) instead of finishing; no update is
+  // applied, and no direct solver redoes the solve.
+  SpringChain chain = linearChain();
+  RecordingObserver observer;
+  observer.stopAfterIterations = 0;
+  LinearSolverSpec iterative;
+  iterative.method = LinearSolverSpec::Method::Amg;
+  LoadStepper stepper(chain, observer, {phase(4, 1.0)}, iterative);
+  const RunSummary summary = stepper.run();
+  EXPECT_EQ(summary.outcome, RunSummary::Outcome::Interrupted);
+  EXPECT_EQ(summary.stepsConverged, 0);
+  EXPECT_TRUE(observer.iterations.empty());
+  EXPECT_EQ(stepper.statistics().linear.krylovFallbacks, 0);
+  EXPECT_EQ(stepper.statistics().linear.krylovIterations, 0);
+  EXPECT_EQ(stepper.statistics().linear.solves, 1);
+}
+
 TEST(LoadStepper, OutputEveryKStepsAndAlwaysAtThePhaseEnd) {
   SpringChain chain = linearChain();
   RecordingObserver observer;

@@ -236,6 +236,42 @@ TEST(PetscSolver, StalledKrylovSolveFallsBackToTheDirectSolverAndSaysSo) {
       << notes[1];
 }
 
+TEST(PetscSolver, AStopRequestEndsAKrylovSolveAtTheNextIteration) {
+  const Lattice model = lattice(6, 0.3);
+  const Eigen::VectorXd rhs = rightHandSide(model.system.free.rows());
+  const double rtol = 1e-12;  // far more than three iterations for either preconditioner
+  for (const PetscMethod method : {PetscMethod::BoomerAmg, PetscMethod::Gamg}) {
+    auto solver = makePetscSolver(method);
+    solver->setLayout(model.layout);
+    solver->setRelativeTolerance(rtol);
+    int polls = 0;
+    solver->setStopPoll([&polls] { return ++polls == 3; });
+    solver->analyzePattern(model.system.free);
+    solver->factorize(model.system.free);
+    EXPECT_THROW(solver->solve(rhs), SolveInterrupted) << solver->name();
+    // Polled before the first iteration and after each: the third poll ends the second.
+    EXPECT_EQ(solver->lastSolve().iterations, 2) << solver->name();
+    // Not a stall: the next solve with the same hierarchy reaches the tolerance.
+    solver->factorize(model.system.free);
+    EXPECT_EQ(solver->statistics().reusedPreconditioners, 1) << solver->name();
+    const Eigen::VectorXd x = solver->solve(rhs);
+    EXPECT_LE((model.system.free * x - rhs).norm() / rhs.norm(), rtol) << solver->name();
+    EXPECT_GT(polls, 3);
+  }
+}
+
+TEST(PetscSolver, AStopDuringAKrylovSolveIsPassedOnNotSolvedDirectly) {
+  const Lattice model = lattice(5);
+  TangentSolver solver(LinearSolverSpec::Method::Amg);
+  solver.setStopPoll([] { return true; });
+  solver.setLayout(model.layout);
+  solver.setForcing(1e-10);
+  solver.factorize(model.system);
+  EXPECT_THROW(solver.solve(rightHandSide(model.system.free.rows())), SolveInterrupted);
+  EXPECT_EQ(solver.statistics().krylovFallbacks, 0);
+  EXPECT_EQ(solver.activeBackend(), "GMRES+BoomerAMG");
+}
+
 TEST(PetscSolver, SingularSystemIsASingularStepFailure) {
   // A free chain: the constant vector is in the nullspace.
   std::vector<Eigen::Triplet<double>> entries;
