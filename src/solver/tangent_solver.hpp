@@ -28,16 +28,19 @@
 namespace cc {
 
 // Free equations from which `solver=auto` solves iteratively, with GMRES + BoomerAMG. Measured
-// on dumped tangents of the scaling decks (docs/performance/solvers.md, one thread, CPU seconds
-// per system): 14 k equations UMFPACK 0.6, GAMG 0.7, BoomerAMG 0.6; 45 k equations UMFPACK 2.5
-// (about 1.7 without the analysis that Newton reuses), GAMG 1.8, BoomerAMG 2.7, MUMPS 2.2; those
-// AMG times ran without the mesh's node blocks, which one process lost until the 28th session.
-// With them, whole runs, one thread: the thin 57 k scaling deck (45 242 equations) BoomerAMG
-// 42.1-51.4 s, GAMG 50.6 s, the direct pair 53.4 s (59, 60 and 56 Newton iterations): even at
-// 45 k, so the break-even stays. Above it BoomerAMG, not GAMG: on the bulk die (bulk_79k.deck)
-// BoomerAMG 91.3 s and 42 iterations, GAMG 1038 s, 102 iterations and a cut-back; on two
-// processes 36.0 against 39.8 s (thin) and 63.8 s against 703.5 s with six stalled Krylov solves
-// (bulk). Every paper and regression deck is far below it (at most ~20 k).
+// on dumped tangents of the scaling decks with the node blocks (docs/performance/solvers.md,
+// twenty-ninth session, one thread, CPU seconds per system, stick / slip): 14 k equations
+// UMFPACK 0.24 / 0.32, BoomerAMG 0.43 / 0.39, GAMG 0.76 / 0.64; 45 k UMFPACK 1.47 / 1.31 (less
+// without the analysis that Newton reuses, and a kept factor serves later tangents), MUMPS
+// 1.23 / 1.21, BoomerAMG 0.90 / 1.21, GAMG 1.61 / 2.28. Whole runs, one thread: the thin 57 k
+// scaling deck (45 242 equations) BoomerAMG 42.1-51.4 s, GAMG 50.6 s, the direct pair 53.4 s
+// (59, 60 and 56 Newton iterations): even at 45 k, so the break-even stays. Above it BoomerAMG,
+// not GAMG: one process, thin, 0.5-0.8 times GAMG's CPU per system up to 342 k equations; on
+// the bulk die (bulk_79k.deck) BoomerAMG 91.3 s and 42 iterations, GAMG 1038 s, 102 iterations
+// and a cut-back; on two processes 36.0 against 39.8 s (thin) and 63.8 s against 703.5 s with
+// six stalled Krylov solves (bulk). The price: two processes on thin models from a few hundred
+// thousand equations, where GAMG is faster (388 k: 366 against 305 s; 1.13 M: 22.3 against
+// 14.5 min). Every paper and regression deck is far below the break-even (at most ~20 k).
 inline constexpr Eigen::Index kIterativeBreakEven = 50000;
 static_assert(kIterativeBreakEven == kMemoryBoundSystemFrom,
               "linear_solver.hpp: memory-bound sizes start where the direct solvers end");
