@@ -39,8 +39,8 @@ namespace cc {
 // the bulk die (bulk_79k.deck) BoomerAMG 91.3 s and 42 iterations, GAMG 1038 s, 102 iterations
 // and a cut-back; on two processes 36.0 against 39.8 s (thin) and 63.8 s against 703.5 s with
 // six stalled Krylov solves (bulk). The price: two processes on thin models from a few hundred
-// thousand equations, where GAMG is faster (388 k: 366 against 305 s; 1.13 M: 22.3 against
-// 14.5 min). Every paper and regression deck is far below the break-even (at most ~20 k).
+// thousand equations, where GAMG is faster (388 k: 366 against 305 s; 1.13 M: 21.9 against
+// 16.8 min). Every paper and regression deck is far below the break-even (at most ~20 k).
 inline constexpr Eigen::Index kIterativeBreakEven = 50000;
 static_assert(kIterativeBreakEven == kMemoryBoundSystemFrom,
               "linear_solver.hpp: memory-bound sizes start where the direct solvers end");
