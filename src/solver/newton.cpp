@@ -71,6 +71,11 @@ NewtonResult failed(int iteration, FailureKind kind, std::string message) {
   return {NewtonResult::Status::Failed, iteration, kind, std::move(message)};
 }
 
+// Stopped on request (SIGINT/SIGTERM), between iterations or within a Krylov solve.
+NewtonResult interrupted(int iteration) {
+  return {NewtonResult::Status::Interrupted, iteration, FailureKind::Diverged, "interrupted"};
+}
+
 bool usesResidual(NewtonSpec::Criterion criterion) {
   return criterion == NewtonSpec::Criterion::Residual || criterion == NewtonSpec::Criterion::Either;
 }
@@ -400,7 +405,7 @@ NewtonResult Newton::solve(const NewtonStep& step, const NewtonSpec& spec,
       }
       du = linear_.solve(rhs);
     } catch (const SolveInterrupted&) {
-      return {NewtonResult::Status::Interrupted, iteration, FailureKind::Diverged, "interrupted"};
+      return interrupted(iteration);
     } catch (const StepFailure& failure) {
       if (failure.kind() != FailureKind::SingularSystem) {
         return failed(iteration, failure.kind(), failure.what());
@@ -454,7 +459,7 @@ NewtonResult Newton::solve(const NewtonStep& step, const NewtonSpec& spec,
       return converged(iteration);
     }
     if (observer_.stopRequested()) {
-      return {NewtonResult::Status::Interrupted, iteration, FailureKind::Diverged, "interrupted"};
+      return interrupted(iteration);
     }
   }
   const std::string switching = problem_.describeSwitchingContact();
