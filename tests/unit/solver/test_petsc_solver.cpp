@@ -13,98 +13,18 @@
 #include "solver/linear_solver.hpp"
 #include "solver/petsc_loader.hpp"
 #include "solver/tangent_solver.hpp"
+#include "spring_lattice.hpp"
 
 namespace cc {
 namespace {
 
-// A lattice of n x n x n nodes joined by axial springs along the edges and face diagonals of
-// every cell (a stable truss: each 3 x 3 block is k d d^T, so the free lattice has exactly the
-// six rigid-body modes as nullspace). The nodes of the bottom layer z = 0 are fixed; their dofs
-// are not equations. `skew` adds an unsymmetric coupling skew * (e_x e_y^T - e_y e_x^T) to the
-// springs of the top layer (like the frictional slip tangent of a contact surface), keeping the
-// pattern.
-struct Lattice {
-  SystemMatrices system;
-  SystemLayout layout;
-};
+using test::Lattice;
+using test::lattice;
 
-Lattice lattice(int n, double skew = 0.0) {
-  Lattice result;
-  const int nodes = n * n * n;
-  auto node = [n](int i, int j, int k) { return i + n * (j + n * k); };
-  result.layout.coordinates.resize(3, nodes);
-  for (int k = 0; k < n; ++k)
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i) result.layout.coordinates.col(node(i, j, k)) << i, j, k;
-  std::vector<int> equation(3 * nodes, -1);
-  for (int d = 0; d < 3 * nodes; ++d) {
-    if (d / 3 >= n * n) {  // not on the bottom layer
-      equation[d] = static_cast<int>(result.layout.freeDofs.size());
-      result.layout.freeDofs.push_back(d);
-    }
-  }
-  std::vector<Eigen::Triplet<double>> entries;
-  auto spring = [&](int a, int b) {
-    const Eigen::Vector3d d =
-        (result.layout.coordinates.col(b) - result.layout.coordinates.col(a)).normalized();
-    Eigen::Matrix3d block = d * d.transpose();
-    const bool onTop = a / (n * n) == n - 1 && b / (n * n) == n - 1;
-    if (onTop) block(0, 1) += skew, block(1, 0) -= skew;
-    const int ends[2] = {a, b};
-    for (int p = 0; p < 2; ++p)
-      for (int q = 0; q < 2; ++q)
-        for (int r = 0; r < 3; ++r)
-          for (int c = 0; c < 3; ++c) {
-            const int row = equation[3 * ends[p] + r], col = equation[3 * ends[q] + c];
-            if (row >= 0 && col >= 0) {
-              entries.emplace_back(row, col, (p == q ? 1.0 : -1.0) * block(r, c));
-            }
-          }
-  };
-  for (int k = 0; k < n; ++k)
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i) {
-        const int a = node(i, j, k);
-        if (i + 1 < n) spring(a, node(i + 1, j, k));
-        if (j + 1 < n) spring(a, node(i, j + 1, k));
-        if (k + 1 < n) spring(a, node(i, j, k + 1));
-        if (i + 1 < n && j + 1 < n)
-          spring(a, node(i + 1, j + 1, k)), spring(node(i + 1, j, k), node(i, j + 1, k));
-        if (i + 1 < n && k + 1 < n)
-          spring(a, node(i + 1, j, k + 1)), spring(node(i + 1, j, k), node(i, j, k + 1));
-        if (j + 1 < n && k + 1 < n)
-          spring(a, node(i, j + 1, k + 1)), spring(node(i, j + 1, k), node(i, j, k + 1));
-      }
-  const int size = static_cast<int>(result.layout.freeDofs.size());
-  result.system.free.resize(size, size);
-  result.system.free.setFromTriplets(entries.begin(), entries.end());
-  result.system.free.makeCompressed();
-  result.system.symmetric = skew == 0.0;
-  result.system.patternVersion = 1;
-  return result;
-}
-
-Eigen::VectorXd rightHandSide(Eigen::Index size) {
-  Eigen::VectorXd rhs(size);
-  for (Eigen::Index k = 0; k < size; ++k) rhs[k] = std::sin(1.0 + static_cast<double>(k));
-  return rhs;
-}
-
-double conditionNumber(const SparseMatrix& matrix) {
-  const Eigen::MatrixXd dense(matrix);
-  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(dense);
-  return svd.singularValues()(0) / svd.singularValues()(svd.singularValues().size() - 1);
-}
-
-Eigen::VectorXd directSolution(const SystemMatrices& system, const Eigen::VectorXd& rhs) {
-  TangentSolver direct(LinearSolverSpec::Method::Cholmod);
-  direct.factorize(system);
-  return direct.solve(rhs);
-}
-
-double relativeError(const Eigen::VectorXd& x, const Eigen::VectorXd& reference) {
-  return (x - reference).norm() / reference.norm();
-}
+using test::conditionNumber;
+using test::directSolution;
+using test::relativeError;
+using test::rightHandSide;
 
 TEST(PetscSolver, DirectBackendsMatchCholmodToRoundoff) {
   const Lattice model = lattice(5);

@@ -1,0 +1,133 @@
+// The PETSc backend on several processes (issues 13 and 17), run under `mpirun -np 2` and
+// `-np 3`: each process passes its share of a spring lattice (the springs of the nodes it owns;
+// the other springs stay in the pattern as zeros, as NonlinearProblem's shares do), and every
+// process must receive the solution of the whole system, against CHOLMOD / UMFPACK on one
+// process: MUMPS to round-off, GMRES + BoomerAMG / GAMG within cond(K) times their tolerance.
+// A share that gains a nonzero in a row of another process only after the pattern was analyzed,
+// in rows not coupled to its own (a contact item with no node there), must still count.
+#include <gtest/gtest.h>
+
+#include <utility>
+#include <vector>
+
+#include "parallel/process_group.hpp"
+#include "solver/petsc_loader.hpp"
+#include "solver/tangent_solver.hpp"
+#include "spring_lattice.hpp"
+
+namespace cc {
+namespace {
+
+using test::Lattice;
+using test::lattice;
+using test::latticeNode;
+using test::LatticeOptions;
+using test::relativeError;
+
+constexpr int kSide = 6;  // 6 x 6 x 6 nodes, 540 equations
+constexpr double kKrylovTolerance = 1e-9;
+
+// Slabs of x: process p owns the nodes with i * processes / kSide == p.
+std::vector<int> slabOwners(int processes) {
+  std::vector<int> owner(kSide * kSide * kSide);
+  for (int k = 0; k < kSide; ++k)
+    for (int j = 0; j < kSide; ++j)
+      for (int i = 0; i < kSide; ++i) owner[latticeNode(kSide, i, j, k)] = i * processes / kSide;
+  return owner;
+}
+
+// A spring between two corners of the last process, (n-1, 0, n-1) and (n-1, n-1, n-1), that
+// process 0 evaluates (like a contact item whose nodes are all elsewhere): no other spring
+// couples its rows to process 0.
+const std::pair<int, int> kFarSpring{latticeNode(kSide, kSide - 1, 0, kSide - 1),
+                                     latticeNode(kSide, kSide - 1, kSide - 1, kSide - 1)};
+
+// The whole system (owner < 0) or the share of process `owner`; the far spring weighs
+// `farWeight`.
+Lattice latticeSystem(int owner, double skew, double farWeight) {
+  const std::vector<int> nodeOwner = slabOwners(processGroup().size());
+  LatticeOptions options;
+  options.skew = skew;
+  options.extraSprings = {kFarSpring};
+  options.weight = [&nodeOwner, owner, farWeight](int a, int b) {
+    const bool far = std::pair{a, b} == kFarSpring;
+    const int springOwner = far ? 0 : nodeOwner[a];
+    return owner < 0 || springOwner == owner ? (far ? farWeight : 1.0) : 0.0;
+  };
+  Lattice result = lattice(kSide, options);
+  if (owner >= 0) result.layout.nodeOwner = nodeOwner;
+  return result;
+}
+
+Eigen::VectorXd referenceSolution(const SystemMatrices& whole, const Eigen::VectorXd& rhs) {
+  TangentSolver direct(whole.symmetric ? LinearSolverSpec::Method::Cholmod
+                                       : LinearSolverSpec::Method::Umfpack);
+  direct.factorize(whole);
+  return direct.solve(rhs);
+}
+
+// What the solution of `method` may miss the reference by, given cond(K).
+double allowedError(PetscMethod method, double cond) {
+  return method == PetscMethod::Mumps ? cond * 1e3 * 2.2e-16 : cond * kKrylovTolerance;
+}
+
+std::unique_ptr<LinearSolver> distributedSolver(PetscMethod method, const SystemLayout& layout) {
+  auto solver = makePetscSolver(method);
+  solver->setLayout(layout);
+  solver->setRelativeTolerance(kKrylovTolerance);
+  return solver;
+}
+
+TEST(DistributedPetsc, TheSharesOfAllProcessesSolveTheWholeSystem) {
+  const int rank = processGroup().rank();
+  for (double skew : {0.0, 0.3}) {
+    const Lattice whole = latticeSystem(-1, skew, 1.0);
+    const Lattice share = latticeSystem(rank, skew, 1.0);
+    const Eigen::VectorXd rhs = test::rightHandSide(whole.system.free.rows());
+    const Eigen::VectorXd reference = referenceSolution(whole.system, rhs);
+    const double cond = test::conditionNumber(whole.system.free);
+    for (PetscMethod method : {PetscMethod::Mumps, PetscMethod::BoomerAmg, PetscMethod::Gamg}) {
+      auto solver = distributedSolver(method, share.layout);
+      solver->analyzePattern(share.system.free);
+      solver->factorize(share.system.free);
+      EXPECT_LE(relativeError(solver->solve(rhs), reference), allowedError(method, cond))
+          << solver->name() << ", skew " << skew << ", rank " << rank;
+    }
+  }
+}
+
+TEST(DistributedPetsc, ANonzeroThatAppearsAfterTheAnalysisInARowOfAnotherProcessCounts) {
+  const int rank = processGroup().rank();
+  const Lattice share0 = latticeSystem(rank, 0.3, 0.0), share1 = latticeSystem(rank, 0.3, 1.0);
+  const Lattice whole0 = latticeSystem(-1, 0.3, 0.0), whole1 = latticeSystem(-1, 0.3, 1.0);
+  const Eigen::VectorXd rhs = test::rightHandSide(whole0.system.free.rows());
+  const double cond0 = test::conditionNumber(whole0.system.free);
+  const double cond1 = test::conditionNumber(whole1.system.free);
+  for (PetscMethod method : {PetscMethod::Mumps, PetscMethod::BoomerAmg}) {
+    auto solver = distributedSolver(method, share0.layout);
+    solver->analyzePattern(share0.system.free);
+    solver->factorize(share0.system.free);
+    EXPECT_LE(relativeError(solver->solve(rhs), referenceSolution(whole0.system, rhs)),
+              allowedError(method, cond0))
+        << solver->name() << ", rank " << rank << ", far spring 0";
+    // The same pattern, no new analysis; process 0's share now adds to the far corners' rows.
+    solver->factorize(share1.system.free);
+    EXPECT_LE(relativeError(solver->solve(rhs), referenceSolution(whole1.system, rhs)),
+              allowedError(method, cond1))
+        << solver->name() << ", rank " << rank << ", far spring 1";
+  }
+}
+
+TEST(DistributedPetsc, RunsOnSeveralProcesses) {
+  EXPECT_GT(processGroup().size(), 1);
+}
+
+// PETSc and MPI are finalized once, after every test of the program.
+class PetscEnvironment : public ::testing::Environment {
+ public:
+  void TearDown() override { petsc::finalize(); }
+};
+const auto* const environment = ::testing::AddGlobalTestEnvironment(new PetscEnvironment);
+
+}  // namespace
+}  // namespace cc
