@@ -155,8 +155,7 @@ class PetscSolver final : public LinearSolver {
     setValues(matrix);
     const bool reuseHierarchy = iterative() && hierarchyBuilt_ && !rebuildHierarchy_;
     if (iterative()) {
-      // The modes serve the set-up of a hierarchy only (GAMG's prolongation).
-      if (!reuseHierarchy) setNearNullSpace();
+      setNearNullSpace();
       check(KSPSetReusePreconditioner(ksp_, reuseHierarchy ? PETSC_TRUE : PETSC_FALSE),
             "KSPSetReusePreconditioner");
     }
