@@ -13,13 +13,13 @@
 // (MatNullSpaceCreateRigidBody on the current coordinates).
 //
 // Distribution (issue 17). On one process the rows are the equations (or nodal dofs, embedded)
-// in their order and the matrix is MATAIJ = SeqAIJ. On several processes (SystemLayout::
-// nodeOwner) the rows are renumbered so that each process owns a contiguous range holding the
-// dofs of its nodes (MATMPIAIJ, preallocated exactly from the replicated pattern: d_nnz and
-// o_nnz); each process adds the nonzero entries of its share of K (ADD_VALUES: PETSc sends the
-// entries of rows another process owns at assembly), sets the right-hand side rows it owns, and
-// receives the whole solution (VecScatterCreateToAll), so that Newton goes on identically on
-// every process.
+// in their order and the matrix is MATAIJ = SeqAIJ with exactly the CSR structure of K, whose
+// value array setValues fills in place. On several processes (SystemLayout::nodeOwner) the rows
+// are renumbered so that each process owns a contiguous range holding the dofs of its nodes
+// (MATMPIAIJ); each process gives its share of K as COO entries (MatSetPreallocationCOO once
+// per pattern, MatSetValuesCOO per tangent: PETSc sums the shares and sends the entries of rows
+// another process owns), sets the right-hand side rows it owns, and receives the whole
+// solution (VecScatterCreateToAll), so that Newton goes on identically on every process.
 #include <fmt/format.h>
 #include <omp.h>
 #include <petscksp.h>
@@ -448,7 +448,6 @@ class PetscSolver final : public LinearSolver {
     rowStart_.assign(static_cast<std::size_t>(size_) + 1, 0);
     for (PetscInt r = 0; r < size_; ++r) rowStart_[r + 1] = rowStart_[r] + length[r];
     columns_.assign(static_cast<std::size_t>(rowStart_.back()), 0);
-    values_.assign(columns_.size(), 0.0);
     position_.assign(static_cast<std::size_t>(nonZeros_), 0);
     std::vector<PetscInt> next(rowStart_.begin(), rowStart_.end() - 1);
     // Columns visited in ascending order: on one process every CSR row comes out sorted.
@@ -474,29 +473,26 @@ class PetscSolver final : public LinearSolver {
     check(MatCreate(PETSC_COMM_WORLD, &matrix_), "MatCreate");
     check(MatSetSizes(matrix_, local, local, size_, size_), "MatSetSizes");
     check(MatSetType(matrix_, MATAIJ), "MatSetType");
-    // MatXAIJSetPreallocation gives the matrix the block size it is called with, so the embedded
-    // system's row lengths go per node block of 3 rows: that block size is what BoomerAMG's
-    // nodal coarsening and GAMG's aggregation of the rigid-body modes work on. Until the 28th
-    // session 1 was passed here, after MatSetBlockSize(3), and one process solved without it
-    // (the distributed path keeps it through PETSc's preallocator).
-    const PetscInt blockSize = embedded_ ? 3 : 1;
-    const std::size_t blocks = static_cast<std::size_t>(local / blockSize);
-    std::vector<PetscInt> diagonal(blocks, 0), offDiagonal(blocks, 0);
-    for (PetscInt r = first; r < last; ++r) {
-      PetscInt inBlock = 0, offBlock = 0;
-      for (PetscInt k = rowStart_[r]; k < rowStart_[r + 1]; ++k) {
-        const PetscInt c = columns_[static_cast<std::size_t>(k)];
-        ++(c >= first && c < last ? inBlock : offBlock);
-      }
-      // Lengths in blocks of 3 columns, the longest row of the node block's three.
-      const std::size_t block = static_cast<std::size_t>((r - first) / blockSize);
-      diagonal[block] = std::max(diagonal[block], (inBlock + blockSize - 1) / blockSize);
-      offDiagonal[block] = std::max(offDiagonal[block], (offBlock + blockSize - 1) / blockSize);
-    }
-    check(MatXAIJSetPreallocation(matrix_, blockSize, diagonal.data(), offDiagonal.data(), nullptr,
-                                  nullptr),
-          "MatXAIJSetPreallocation");
+    // The block size of the embedded system (3: node blocks) is what BoomerAMG's nodal
+    // coarsening and GAMG's aggregation of the rigid-body modes work on. Until the 28th session
+    // MatXAIJSetPreallocation(bs = 1) reset it and one process solved without it.
+    check(MatSetBlockSize(matrix_, embedded_ ? 3 : 1), "MatSetBlockSize");
+    // The CSR structure exactly, assembled with zeros: the matrix's value array then has the
+    // layout of columns_, and setValues writes into it through position_.
+    check(MatSeqAIJSetPreallocationCSR(matrix_, rowStart_.data(), columns_.data(), nullptr),
+          "MatSeqAIJSetPreallocationCSR");
     check(MatSetOption(matrix_, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE), "MatSetOption");
+    PetscInt rows = 0;
+    const PetscInt *starts = nullptr, *columns = nullptr;
+    PetscBool done = PETSC_FALSE;
+    check(MatGetRowIJ(matrix_, 0, PETSC_FALSE, PETSC_FALSE, &rows, &starts, &columns, &done),
+          "MatGetRowIJ");
+    const bool same = done && rows == size_ &&
+                      std::equal(rowStart_.begin(), rowStart_.end(), starts) &&
+                      std::equal(columns_.begin(), columns_.end(), columns);
+    check(MatRestoreRowIJ(matrix_, 0, PETSC_FALSE, PETSC_FALSE, &rows, &starts, &columns, &done),
+          "MatRestoreRowIJ");
+    if (!same) throw std::logic_error("PETSc: the matrix does not keep the structure it was given");
   }
 
   void createVectors() {
@@ -555,20 +551,14 @@ class PetscSolver final : public LinearSolver {
 
   // Marks the rows another process owns that this process's share adds to (nonzero entries:
   // the share is the replicated pattern with zeros outside the items this process owns).
-  // Returns whether a row was new (an item without a node here).
-  bool markSharedRows(const SparseMatrix& matrix) {
+  void markSharedRows(const SparseMatrix& matrix) {
     const auto [first, last] = ownedRows();
     const double* entries = matrix.valuePtr();
-    bool added = false;
     for (Eigen::Index k = 0; k < nonZeros_; ++k) {
-      if (entries[k] == 0.0) continue;
       const PetscInt r = row_[matrix.innerIndexPtr()[k]];
-      if ((r < first || r >= last) && !sharedRows_[static_cast<std::size_t>(r)]) {
+      if (entries[k] != 0.0 && (r < first || r >= last))
         sharedRows_[static_cast<std::size_t>(r)] = 1;
-        added = true;
-      }
     }
-    return added;
   }
 
   // The COO entries of this process: every entry of the pattern in the rows it owns (zeros
@@ -576,21 +566,18 @@ class PetscSolver final : public LinearSolver {
   // the structure is the same whatever rows are shared), every entry in the shared rows of
   // other processes, and the diagonal of its identity rows. Collective.
   void preallocateShare(const SparseMatrix& matrix) {
-    const auto [first, last] = ownedRows();
-    shareEntries_.clear();
     std::vector<PetscInt> rows, columns;
     remoteEntries_ = 0;
     for (Eigen::Index j = 0; j < equations_; ++j) {
       for (int k = matrix.outerIndexPtr()[j]; k < matrix.outerIndexPtr()[j + 1]; ++k) {
         const PetscInt r = row_[matrix.innerIndexPtr()[k]];
-        const bool owned = r >= first && r < last;
-        if (!owned && !sharedRows_[static_cast<std::size_t>(r)]) continue;
-        remoteEntries_ += owned ? 0 : 1;
-        shareEntries_.push_back(k);
+        if (!inShare(r)) continue;
+        remoteEntries_ += sharedRows_[static_cast<std::size_t>(r)];
         rows.push_back(r);
         columns.push_back(row_[j]);
       }
     }
+    shareEntries_ = rows.size();
     for (PetscInt r : identityRows_) {
       rows.push_back(r);
       columns.push_back(r);
@@ -599,6 +586,33 @@ class PetscSolver final : public LinearSolver {
     check(MatSetPreallocationCOO(matrix_, static_cast<PetscCount>(rows.size()), rows.data(),
                                  columns.data()),
           "MatSetPreallocationCOO");
+  }
+
+  // Whether the COO entries of this process hold the entries of row r (preallocateShare).
+  bool inShare(PetscInt r) const {
+    return (r >= firstRow_[static_cast<std::size_t>(rank_)] &&
+            r < firstRow_[static_cast<std::size_t>(rank_) + 1]) ||
+           sharedRows_[static_cast<std::size_t>(r)];
+  }
+
+  // The share's values of the COO entries, in preallocateShare's order, into shareValues_.
+  // Returns whether a nonzero lies outside them; adds |diagonal| to diagonalSum.
+  bool gatherShare(const SparseMatrix& matrix, double& diagonalSum) {
+    const double* entries = matrix.valuePtr();
+    bool outside = false;
+    std::size_t e = 0;
+    for (Eigen::Index j = 0; j < equations_; ++j) {
+      for (int k = matrix.outerIndexPtr()[j]; k < matrix.outerIndexPtr()[j + 1]; ++k) {
+        const int i = matrix.innerIndexPtr()[k];
+        if (i == j) diagonalSum += std::abs(entries[k]);
+        if (inShare(row_[i])) {
+          shareValues_[e++] = entries[k];
+        } else if (entries[k] != 0.0) {
+          outside = true;
+        }
+      }
+    }
+    return outside;
   }
 
   void createSolver() {
@@ -704,29 +718,25 @@ class PetscSolver final : public LinearSolver {
     if (!given) check(PetscOptionsSetValue(nullptr, name, value), "PetscOptionsSetValue");
   }
 
+  // One process: the values go straight into the matrix's value array (createMatrix gave it
+  // the layout of the CSR), with no copy and no search.
   void setValues(const SparseMatrix& matrix) {
     if (distributed_) return addShares(matrix);
     const double* entries = matrix.valuePtr();
     double diagonalSum = 0;
+    PetscScalar* values = nullptr;
+    check(MatSeqAIJGetArray(matrix_, &values), "MatSeqAIJGetArray");
     for (Eigen::Index j = 0; j < equations_; ++j) {
       for (int k = matrix.outerIndexPtr()[j]; k < matrix.outerIndexPtr()[j + 1]; ++k) {
-        values_[static_cast<std::size_t>(position_[static_cast<std::size_t>(k)])] = entries[k];
+        values[position_[static_cast<std::size_t>(k)]] = entries[k];
         if (matrix.innerIndexPtr()[k] == j) diagonalSum += std::abs(entries[k]);
       }
     }
     // Identity rows of the embedding at the scale of K's diagonal, so that they neither
     // dominate nor vanish in AMG's strength-of-connection test.
     const double scale = equations_ > 0 && diagonalSum > 0 ? diagonalSum / equations_ : 1.0;
-    for (PetscInt r : identityRows_) values_[static_cast<std::size_t>(rowStart_[r])] = scale;
-    const auto [first, last] = ownedRows();
-    for (PetscInt r = first; r < last; ++r) {
-      const PetscInt count = rowStart_[r + 1] - rowStart_[r];
-      check(MatSetValues(matrix_, 1, &r, count, columns_.data() + rowStart_[r],
-                         values_.data() + rowStart_[r], INSERT_VALUES),
-            "MatSetValues");
-    }
-    check(MatAssemblyBegin(matrix_, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
-    check(MatAssemblyEnd(matrix_, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+    for (PetscInt r : identityRows_) values[rowStart_[r]] = scale;
+    check(MatSeqAIJRestoreArray(matrix_, &values), "MatSeqAIJRestoreArray");
   }
 
   // Several processes: the values of this process's COO entries (preallocateShare), summed
@@ -734,30 +744,24 @@ class PetscSolver final : public LinearSolver {
   // that the COO entries do not cover (a contact item that was zero when the pattern was
   // analyzed) makes every process preallocate again; the structure stays the same.
   void addShares(const SparseMatrix& matrix) {
-    const double* entries = matrix.valuePtr();
     double diagonalSum = 0;
-    for (Eigen::Index j = 0; j < equations_; ++j) {
-      for (int k = matrix.outerIndexPtr()[j]; k < matrix.outerIndexPtr()[j + 1]; ++k) {
-        if (matrix.innerIndexPtr()[k] == j) diagonalSum += std::abs(entries[k]);
-      }
-    }
-    int newSharedRow = markSharedRows(matrix) ? 1 : 0, anyNew = 0;
-    MPI_Allreduce(&newSharedRow, &anyNew, 1, MPI_INT, MPI_LOR, PETSC_COMM_WORLD);
-    if (anyNew) {
+    int outside = gatherShare(matrix, diagonalSum) ? 1 : 0, anyOutside = 0;
+    MPI_Allreduce(&outside, &anyOutside, 1, MPI_INT, MPI_LOR, PETSC_COMM_WORLD);
+    if (anyOutside) {
       // New COO maps give the matrix a new nonzero state: the preconditioner (a MUMPS factor
       // whose handle factorOnce keeps, an AMG hierarchy) starts afresh.
+      markSharedRows(matrix);
       releaseFactor();
       preallocateShare(matrix);
-    }
-    const std::size_t count = shareEntries_.size();
-    for (std::size_t e = 0; e < count; ++e) {
-      shareValues_[e] = entries[shareEntries_[e]];
+      diagonalSum = 0;
+      gatherShare(matrix, diagonalSum);
     }
     // The identity rows of the embedding (see setValues), scaled by the mean over all shares.
     double total = 0;
     MPI_Allreduce(&diagonalSum, &total, 1, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
     const double scale = equations_ > 0 && total > 0 ? total / equations_ : 1.0;
-    std::fill(shareValues_.begin() + static_cast<std::ptrdiff_t>(count), shareValues_.end(), scale);
+    std::fill(shareValues_.begin() + static_cast<std::ptrdiff_t>(shareEntries_), shareValues_.end(),
+              scale);
     check(MatSetValuesCOO(matrix_, shareValues_.data(), INSERT_VALUES), "MatSetValuesCOO");
     // A COO entry of a row another process owns: its value travels (the indices were sent once).
     statistics_.matrixBytesSent += static_cast<double>(remoteEntries_) * sizeof(PetscScalar);
@@ -823,11 +827,9 @@ class PetscSolver final : public LinearSolver {
   int rank_ = 0, processes_ = 1;
   bool distributed_ = false;
   std::vector<PetscInt> rowStart_, columns_, position_, identityRows_;
-  std::vector<PetscScalar> values_;
-  // Several processes: the COO entries of this process (preallocateShare), as positions in the
-  // share's storage, their values, the rows of other processes the share adds to, and how many
-  // COO entries lie in such rows.
-  std::vector<int> shareEntries_;
+  // Several processes: the COO entries of this process (preallocateShare), their values, the
+  // rows of other processes the share adds to, and how many COO entries lie in such rows.
+  std::size_t shareEntries_ = 0;  // COO entries from the share; the identity rows follow
   std::vector<PetscScalar> shareValues_;
   std::vector<char> sharedRows_;
   long remoteEntries_ = 0;
