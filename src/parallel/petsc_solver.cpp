@@ -549,8 +549,8 @@ class PetscSolver final : public LinearSolver {
     preallocateShare(matrix);
   }
 
-  // Marks the rows another process owns that this process's share adds to (nonzero entries:
-  // the share is the replicated pattern with zeros outside the items this process owns).
+  // Marks the rows another process owns that this process's share adds to now (its nonzero
+  // entries there: a pattern may hold zeros, such as a contact item that is not touching).
   void markSharedRows(const SparseMatrix& matrix) {
     const auto [first, last] = ownedRows();
     const double* entries = matrix.valuePtr();
@@ -561,10 +561,9 @@ class PetscSolver final : public LinearSolver {
     }
   }
 
-  // The COO entries of this process: every entry of the pattern in the rows it owns (zeros
-  // outside its share add nothing, and every process's rows come out with the whole pattern, so
-  // the structure is the same whatever rows are shared), every entry in the shared rows of
-  // other processes, and the diagonal of its identity rows. Collective.
+  // The COO entries of this process: every entry of its share's pattern in the rows it owns and
+  // in the shared rows of other processes (sharedRows_), and the diagonal of its identity rows.
+  // The matrix's structure is the union over the processes. Collective.
   void preallocateShare(const SparseMatrix& matrix) {
     std::vector<PetscInt> rows, columns;
     remoteEntries_ = 0;
@@ -741,8 +740,8 @@ class PetscSolver final : public LinearSolver {
 
   // Several processes: the values of this process's COO entries (preallocateShare), summed
   // over the processes by MatSetValuesCOO. A nonzero of the share in a row another process owns
-  // that the COO entries do not cover (a contact item that was zero when the pattern was
-  // analyzed) makes every process preallocate again; the structure stays the same.
+  // that the COO entries do not cover (an item with no node on this process that was zero
+  // when the pattern was analyzed) makes every process preallocate again.
   void addShares(const SparseMatrix& matrix) {
     double diagonalSum = 0;
     int outside = gatherShare(matrix, diagonalSum) ? 1 : 0, anyOutside = 0;

@@ -40,7 +40,8 @@ namespace cc {
 // and a cut-back; on two processes 36.0 against 39.8 s (thin) and 63.8 s against 703.5 s with
 // six stalled Krylov solves (bulk). The price: two processes on thin models from a few hundred
 // thousand equations, where GAMG is faster (388 k: 366 against 305 s; 1.13 M: 21.9 against
-// 16.8 min). Every paper and regression deck is far below the break-even (at most ~20 k).
+// 16.8 min; thirtieth session, with the tangent through PETSc's COO interface, 1.13 M: 18.4
+// against 13.1 min). Every paper and regression deck is far below the break-even (at most ~20 k).
 inline constexpr Eigen::Index kIterativeBreakEven = 50000;
 static_assert(kIterativeBreakEven == kMemoryBoundSystemFrom,
               "linear_solver.hpp: memory-bound sizes start where the direct solvers end");
