@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "parallel/process_group.hpp"
+#include "petsc_environment.hpp"
 #include "solver/petsc_loader.hpp"
 #include "solver/tangent_solver.hpp"
 #include "spring_lattice.hpp"
@@ -124,13 +125,6 @@ TEST(DistributedPetsc, ANonzeroThatAppearsAfterTheAnalysisInARowOfAnotherProcess
 TEST(DistributedPetsc, RunsOnSeveralProcesses) {
   EXPECT_GT(processGroup().size(), 1);
 }
-
-// PETSc and MPI are finalized once, after every test of the program.
-class PetscEnvironment : public ::testing::Environment {
- public:
-  void TearDown() override { petsc::finalize(); }
-};
-const auto* const environment = ::testing::AddGlobalTestEnvironment(new PetscEnvironment);
 
 }  // namespace
 }  // namespace cc

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "common/errors.hpp"
+#include "petsc_environment.hpp"
 #include "solver/linear_solver.hpp"
 #include "solver/petsc_loader.hpp"
 #include "solver/tangent_solver.hpp"
@@ -275,13 +276,6 @@ TEST(PetscSolver, AutoFactorizesLargeUnsymmetricSystemsWithMumps) {
   symmetricAutomatic.factorize(symmetric.system);
   EXPECT_EQ(symmetricAutomatic.activeBackend(), "CHOLMOD");
 }
-
-// PETSc and MPI are finalized once, after every test of the program.
-class PetscEnvironment : public ::testing::Environment {
- public:
-  void TearDown() override { petsc::finalize(); }
-};
-const auto* const environment = ::testing::AddGlobalTestEnvironment(new PetscEnvironment);
 
 }  // namespace
 }  // namespace cc
