@@ -510,7 +510,7 @@ class PetscSolver final : public LinearSolver {
   // tangent): PETSc maps every entry to its place, and the entries of rows another process owns
   // to that process, once, and each tangent then costs a gather and one exchange. Until the
   // 30th session every tangent went in column by column through MatSetValues (a search per
-  // entry in a row-oriented matrix): 0.2 s of every tangent at 104 k equations.
+  // entry in a row-oriented matrix): about 0.1 s more per tangent at 104 k equations.
   void createDistributedMatrix(const SparseMatrix& matrix) {
     equations_ = matrix.rows();
     nonZeros_ = matrix.nonZeros();
