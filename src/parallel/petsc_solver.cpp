@@ -369,6 +369,10 @@ class PetscSolver final : public LinearSolver {
     return {firstRow_[static_cast<std::size_t>(rank_)],
             firstRow_[static_cast<std::size_t>(rank_) + 1]};
   }
+  bool ownsRow(PetscInt r) const {
+    const auto [first, last] = ownedRows();
+    return r >= first && r < last;
+  }
 
   // PETSc row of every equation (row_), the first row of every process (firstRow_) and, for
   // the embedded system, the nodal dof of every row (dofOfRow_). On several processes the rows
@@ -539,10 +543,10 @@ class PetscSolver final : public LinearSolver {
     // hold every row its share can add to, also those of contact items that are still zero.
     sharedRows_.assign(static_cast<std::size_t>(size_), 0);
     for (Eigen::Index j = 0; j < equations_; ++j) {
-      if (row_[j] < first || row_[j] >= last) continue;
+      if (!ownsRow(row_[j])) continue;
       for (int k = matrix.outerIndexPtr()[j]; k < matrix.outerIndexPtr()[j + 1]; ++k) {
         const PetscInt r = row_[matrix.innerIndexPtr()[k]];
-        if (r < first || r >= last) sharedRows_[static_cast<std::size_t>(r)] = 1;
+        if (!ownsRow(r)) sharedRows_[static_cast<std::size_t>(r)] = 1;
       }
     }
     markSharedRows(matrix);
@@ -552,12 +556,10 @@ class PetscSolver final : public LinearSolver {
   // Marks the rows another process owns that this process's share adds to now (its nonzero
   // entries there: a pattern may hold zeros, such as a contact item that is not touching).
   void markSharedRows(const SparseMatrix& matrix) {
-    const auto [first, last] = ownedRows();
     const double* entries = matrix.valuePtr();
     for (Eigen::Index k = 0; k < nonZeros_; ++k) {
       const PetscInt r = row_[matrix.innerIndexPtr()[k]];
-      if (entries[k] != 0.0 && (r < first || r >= last))
-        sharedRows_[static_cast<std::size_t>(r)] = 1;
+      if (entries[k] != 0.0 && !ownsRow(r)) sharedRows_[static_cast<std::size_t>(r)] = 1;
     }
   }
 
@@ -588,11 +590,7 @@ class PetscSolver final : public LinearSolver {
   }
 
   // Whether the COO entries of this process hold the entries of row r (preallocateShare).
-  bool inShare(PetscInt r) const {
-    return (r >= firstRow_[static_cast<std::size_t>(rank_)] &&
-            r < firstRow_[static_cast<std::size_t>(rank_) + 1]) ||
-           sharedRows_[static_cast<std::size_t>(r)];
-  }
+  bool inShare(PetscInt r) const { return ownsRow(r) || sharedRows_[static_cast<std::size_t>(r)]; }
 
   // The share's values of the COO entries, in preallocateShare's order, into shareValues_.
   // Returns whether a nonzero lies outside them; adds |diagonal| to diagonalSum.
