@@ -183,7 +183,7 @@ def deck_copy(deck, work, press_only=False, predictor=False, size=None):
 def speedups(one, two):
     """Ratios 1 process / 2 processes of the slowest process's time per part."""
     ratio = {}
-    for part in ("elements_s", "contact_s", "linear_solve_s"):
+    for part in ("elements_s", "contact_s", "pattern_s", "linear_solve_s"):
         if part in one and part in two:
             ratio[part] = max(one[part]) / max(max(two[part]), 1e-12)
     if "wall_s" in one and "wall_s" in two:

@@ -240,7 +240,7 @@ SetupError setUp(const RunOptions& options, bool writes, std::unique_ptr<Model>&
 // (scripts/bench_mpi.py reads it). Collective: every process calls it.
 std::string costLine(const Model& model, const SolverStatistics& work, int iterations,
                      double wallSeconds, ProcessGroup& group) {
-  constexpr int kFields = 7;
+  constexpr int kFields = 8;
   const AssemblyTimings& timings = model.assemblyTimings();
   const std::size_t elementSets = model.elementSets().size();
   double elements = 0, contact = timings.prepare;  // prepare = contact search and projection
@@ -260,7 +260,8 @@ std::string costLine(const Model& model, const SolverStatistics& work, int itera
       contact,
       linear.analysisSeconds + linear.factorizationSeconds + linear.solveSeconds,
       linear.matrixBytesSent,
-      linear.solutionBytesReceived};
+      linear.solutionBytesReceived,
+      timings.pattern};
   const int processes = group.size();
   std::vector<double> all(static_cast<std::size_t>(kFields * processes), 0.0);
   std::copy(mine, mine + kFields, all.begin() + kFields * group.rank());
@@ -283,13 +284,14 @@ std::string costLine(const Model& model, const SolverStatistics& work, int itera
       "cost: {{\"processes\": {}, \"equations\": {}, \"elements\": {}, \"assemblies\": {}, "
       "\"iterations\": {}, \"wall_s\": {:.6g}, "
       "\"cpu_s\": {}, \"peak_rss_mib\": {}, \"elements_s\": {}, \"contact_s\": {}, "
-      "\"linear_solve_s\": {}, \"bytes_per_iteration\": {{\"force_sums\": {:.6g}, "
+      "\"linear_solve_s\": {}, \"pattern_s\": {}, "
+      "\"bytes_per_iteration\": {{\"force_sums\": {:.6g}, "
       "\"matrix_entries\": {:.6g}, \"solution\": {:.6g}}}, \"linear_phases_rank0\": "
       "{{\"analyses\": {}, \"analysis_s\": {:.6g}, \"factorizations\": {}, "
       "\"factorization_s\": {:.6g}, \"reused_preconditioners\": {}, \"solves\": {}, "
       "\"solve_s\": {:.6g}, \"krylov_iterations\": {}, \"refinement_steps\": {}}}}}\n",
       processes, model.dofMap().numFree(), model.elementCount(), timings.assemblies, iterations,
-      wallSeconds, column(0), column(1), column(2), column(3), column(4),
+      wallSeconds, column(0), column(1), column(2), column(3), column(4), column(7),
       group.bytesMoved() * perIteration, total(5) * perIteration, total(6) * perIteration,
       linear.analyses, linear.analysisSeconds, linear.factorizations, linear.factorizationSeconds,
       linear.reusedPreconditioners, linear.solves, linear.solveSeconds, linear.krylovIterations,

@@ -401,9 +401,8 @@ bool LoadStepper::rejectStep(const PhaseSpec& phase, const NewtonResult& result,
   summary_.discardedIterations += result.iterations;
   if (result.status == NewtonResult::Status::Interrupted) {
     summary_.outcome = RunSummary::Outcome::Interrupted;
-    summary_.message =
-        fmt::format("interrupted at t = {:.6g}; the unconverged step to t = {:.6g} was discarded",
-                    run.time, step.time);
+    // The run's final line names the outcome and the time already ("run interrupted at t = ").
+    summary_.message = fmt::format("the unconverged step to t = {:.6g} was discarded", step.time);
     return false;
   }
   // The first iteration's tangent is assembled at the converged state: singular there twice in
