@@ -571,7 +571,7 @@ class PetscSolver final : public LinearSolver {
   // The entries go in sorted by row, and by column within a row. PETSc sorts them so (a
   // quicksort of the rows, then of each row's columns) and maps each entry to its place; given
   // in Eigen's column-major order, that sort was most of an analysis (bulk 79 k deck, two
-  // processes: 14 % of all samples in PetscSortIntWithIntCountArrayPair and
+  // processes: 14 % of rank 0's samples in PetscSortIntWithIntCountArrayPair and
   // PetscSortIntWithCountArray, 31 analyses). position_ then says where each entry of K's
   // storage goes among the COO entries (-1: not in this process's share), as on one process.
   void preallocateShare(const SparseMatrix& matrix) {

@@ -382,7 +382,8 @@ bool LoadStepper::acceptStep(const PhaseSpec& phase, const NewtonResult& result,
   control.singularAtStart = false;
   if (!observer_.stopRequested()) return true;
   summary_.outcome = RunSummary::Outcome::Interrupted;
-  summary_.message = fmt::format("interrupted after step {} at t = {:.6g}", run.step, run.time);
+  // The run's final line names the outcome and the time ("run interrupted at t = ...: ").
+  summary_.message = fmt::format("stopped on request after step {}", run.step);
   return false;
 }
 
@@ -401,8 +402,8 @@ bool LoadStepper::rejectStep(const PhaseSpec& phase, const NewtonResult& result,
   summary_.discardedIterations += result.iterations;
   if (result.status == NewtonResult::Status::Interrupted) {
     summary_.outcome = RunSummary::Outcome::Interrupted;
-    // The run's final line names the outcome and the time already ("run interrupted at t = ").
-    summary_.message = fmt::format("the unconverged step to t = {:.6g} was discarded", step.time);
+    summary_.message = fmt::format(
+        "stopped on request; the unconverged step to t = {:.6g} was discarded", step.time);
     return false;
   }
   // The first iteration's tangent is assembled at the converged state: singular there twice in
