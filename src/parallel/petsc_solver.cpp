@@ -438,37 +438,60 @@ class PetscSolver final : public LinearSolver {
                   : static_cast<PetscInt>(equations_);
     row_.resize(static_cast<std::size_t>(equations_));
     numberRows(embed);
-    std::vector<bool> isFree(static_cast<std::size_t>(size_), !embed);
-    for (PetscInt r : row_) isFree[static_cast<std::size_t>(r)] = true;
-    // Row lengths: entries of column j of K go to row row_[j] (transposed storage).
-    std::vector<PetscInt> length(static_cast<std::size_t>(size_), 0);
-    for (Eigen::Index j = 0; j < equations_; ++j) {
-      for (int k = matrix.outerIndexPtr()[j]; k < matrix.outerIndexPtr()[j + 1]; ++k) {
-        ++length[static_cast<std::size_t>(row_[matrix.innerIndexPtr()[k]])];
-      }
-    }
-    for (PetscInt r = 0; r < size_; ++r) {
-      if (!isFree[static_cast<std::size_t>(r)]) length[static_cast<std::size_t>(r)] = 1;
-    }
-    rowStart_.assign(static_cast<std::size_t>(size_) + 1, 0);
-    for (PetscInt r = 0; r < size_; ++r) rowStart_[r + 1] = rowStart_[r] + length[r];
-    columns_.assign(static_cast<std::size_t>(rowStart_.back()), 0);
-    position_.assign(static_cast<std::size_t>(nonZeros_), 0);
-    std::vector<PetscInt> next(rowStart_.begin(), rowStart_.end() - 1);
-    // Columns visited in ascending order: on one process every CSR row comes out sorted.
-    for (Eigen::Index j = 0; j < equations_; ++j) {
-      for (int k = matrix.outerIndexPtr()[j]; k < matrix.outerIndexPtr()[j + 1]; ++k) {
-        const PetscInt r = row_[matrix.innerIndexPtr()[k]];
-        // entry (i, j) of K: row i, column j -> stored in CSR row r = row_[i], column row_[j]
-        position_[static_cast<std::size_t>(k)] = next[r];
-        columns_[static_cast<std::size_t>(next[r]++)] = row_[j];
-      }
-    }
     identityRows_.clear();
-    for (PetscInt r = 0; r < size_; ++r) {
-      if (isFree[static_cast<std::size_t>(r)]) continue;
-      columns_[static_cast<std::size_t>(rowStart_[r])] = r;
-      identityRows_.push_back(r);
+    if (embed) {
+      std::vector<char> isFree(static_cast<std::size_t>(size_), 0);
+      for (PetscInt r : row_) isFree[static_cast<std::size_t>(r)] = 1;
+      for (PetscInt r = 0; r < size_; ++r) {
+        if (!isFree[static_cast<std::size_t>(r)]) identityRows_.push_back(r);
+      }
+    }
+    buildRows(matrix, [](PetscInt) { return true; });
+  }
+
+  // The rows of the (embedded) system that `keep` accepts, in PETSc's numbering, as CSR from K's
+  // column-major storage (CSR of K = CSC of K^T; K is not symmetric in general): rowStart_,
+  // columns_ ascending in every row, position_ (where each entry of K's storage goes; -1: in a
+  // row not kept) and identitySlots_ (the one entry of each identity row, identityRows_). A
+  // counting sort: the rows' lengths, then the columns visited in PETSc's order.
+  template <typename Keep>
+  void buildRows(const SparseMatrix& matrix, Keep keep) {
+    const int* starts = matrix.outerIndexPtr();
+    const int* inner = matrix.innerIndexPtr();
+    std::vector<PetscCount> next(static_cast<std::size_t>(size_) + 1, 0);
+    for (Eigen::Index k = 0; k < nonZeros_; ++k) {
+      const PetscInt r = row_[inner[k]];
+      if (keep(r)) ++next[static_cast<std::size_t>(r) + 1];
+    }
+    for (PetscInt r : identityRows_) ++next[static_cast<std::size_t>(r) + 1];
+    for (std::size_t r = 0; r < static_cast<std::size_t>(size_); ++r) next[r + 1] += next[r];
+    if (next.back() > std::numeric_limits<PetscInt>::max()) {
+      throw OutOfMemory(
+          fmt::format("PETSc: {} matrix entries on one process exceed PETSc's {}-bit "
+                      "indices; run on more processes",
+                      next.back(), 8 * sizeof(PetscInt)));
+    }
+    rowStart_.assign(next.begin(), next.end());
+    columns_.assign(static_cast<std::size_t>(next.back()), 0);
+    position_.assign(static_cast<std::size_t>(nonZeros_), -1);
+    identitySlots_.clear();
+    for (PetscInt r : identityRows_) {
+      identitySlots_.push_back(next[static_cast<std::size_t>(r)]);
+      columns_[static_cast<std::size_t>(next[static_cast<std::size_t>(r)]++)] = r;
+    }
+    std::vector<Eigen::Index> equationOfRow(static_cast<std::size_t>(size_), -1);
+    for (Eigen::Index e = 0; e < equations_; ++e) equationOfRow[row_[e]] = e;
+    for (PetscInt c = 0; c < size_; ++c) {
+      const Eigen::Index j = equationOfRow[static_cast<std::size_t>(c)];
+      if (j < 0) continue;  // an identity row's column: its one entry is placed
+      for (int k = starts[j]; k < starts[j + 1]; ++k) {
+        // entry (i, j) of K: row i, column j -> CSR row r = row_[i], column c = row_[j]
+        const PetscInt r = row_[inner[k]];
+        if (!keep(r)) continue;
+        const PetscCount slot = next[static_cast<std::size_t>(r)]++;
+        columns_[static_cast<std::size_t>(slot)] = c;
+        position_[static_cast<std::size_t>(k)] = static_cast<PetscInt>(slot);
+      }
     }
   }
 
@@ -575,61 +598,30 @@ class PetscSolver final : public LinearSolver {
   // PetscSortIntWithCountArray, 31 analyses). position_ then says where each entry of K's
   // storage goes among the COO entries (-1: not in this process's share), as on one process.
   void preallocateShare(const SparseMatrix& matrix) {
-    const int* starts = matrix.outerIndexPtr();
-    const int* inner = matrix.innerIndexPtr();
-    // Entries per row, then where each row's entries begin (rows ascending).
-    std::vector<PetscCount> next(static_cast<std::size_t>(size_) + 1, 0);
-    for (Eigen::Index k = 0; k < nonZeros_; ++k) {
-      const PetscInt r = row_[inner[k]];
-      if (inShare(r)) ++next[static_cast<std::size_t>(r) + 1];
-    }
-    for (PetscInt r : identityRows_) ++next[static_cast<std::size_t>(r) + 1];
-    for (std::size_t r = 0; r < static_cast<std::size_t>(size_); ++r) next[r + 1] += next[r];
-    const std::size_t count = static_cast<std::size_t>(next.back());
-    if (next.back() > std::numeric_limits<PetscInt>::max()) {
-      throw OutOfMemory(
-          fmt::format("PETSc: {} matrix entries on one process exceed PETSc's {}-bit "
-                      "indices; run on more processes",
-                      count, 8 * sizeof(PetscInt)));
-    }
-    std::vector<PetscInt> rows(count), columns(count);
-    // Columns visited in PETSc's order, so that every row's columns come out ascending.
-    std::vector<Eigen::Index> equationOfRow(static_cast<std::size_t>(size_), -1);
-    for (Eigen::Index e = 0; e < equations_; ++e) equationOfRow[row_[e]] = e;
-    position_.assign(static_cast<std::size_t>(nonZeros_), -1);
+    buildRows(matrix, [this](PetscInt r) { return inShare(r); });
+    std::vector<PetscInt> rows(columns_.size());
     remoteEntries_ = 0;
-    identitySlots_.clear();
-    for (PetscInt c = 0; c < size_; ++c) {
-      const Eigen::Index j = equationOfRow[static_cast<std::size_t>(c)];
-      if (j < 0) {  // an identity row of the embedding: its one entry, if this process owns it
-        if (!ownsRow(c)) continue;
-        const PetscCount slot = next[static_cast<std::size_t>(c)]++;
-        rows[slot] = columns[slot] = c;
-        identitySlots_.push_back(slot);
-        continue;
-      }
-      for (int k = starts[j]; k < starts[j + 1]; ++k) {
-        const PetscInt r = row_[inner[k]];
-        if (!inShare(r)) continue;
-        const PetscCount slot = next[static_cast<std::size_t>(r)]++;
-        rows[slot] = r;
-        columns[slot] = c;
-        position_[static_cast<std::size_t>(k)] = static_cast<PetscInt>(slot);
-        remoteEntries_ += sharedRows_[static_cast<std::size_t>(r)];
-      }
+    for (PetscInt r = 0; r < size_; ++r) {
+      std::fill(rows.begin() + rowStart_[r], rows.begin() + rowStart_[r + 1], r);
+      if (sharedRows_[static_cast<std::size_t>(r)])
+        remoteEntries_ += rowStart_[r + 1] - rowStart_[r];
     }
-    shareValues_.assign(count, 0.0);
-    check(MatSetPreallocationCOO(matrix_, static_cast<PetscCount>(count), rows.data(),
-                                 columns.data()),
+    shareValues_.assign(columns_.size(), 0.0);
+    check(MatSetPreallocationCOO(matrix_, static_cast<PetscCount>(rows.size()), rows.data(),
+                                 columns_.data()),
           "MatSetPreallocationCOO");
+    // PETSc keeps its own maps; the structure is not needed here any more.
+    std::vector<PetscInt>().swap(columns_);
+    std::vector<PetscInt>().swap(rowStart_);
   }
 
   // Whether the COO entries of this process hold the entries of row r (preallocateShare).
   bool inShare(PetscInt r) const { return ownsRow(r) || sharedRows_[static_cast<std::size_t>(r)]; }
 
-  // The share's values of the COO entries (preallocateShare) into shareValues_. Returns whether
-  // a nonzero lies outside them; adds |diagonal| to diagonalSum.
-  bool gatherShare(const SparseMatrix& matrix, double& diagonalSum) {
+  // K's values to their places (position_) in `target`: the matrix's value array (one
+  // process) or the COO values (several). Returns whether a nonzero has no place (a row not
+  // kept by preallocateShare); adds |diagonal| to diagonalSum.
+  bool scatterValues(const SparseMatrix& matrix, PetscScalar* target, double& diagonalSum) const {
     const double* entries = matrix.valuePtr();
     bool outside = false;
     for (Eigen::Index j = 0; j < equations_; ++j) {
@@ -637,13 +629,20 @@ class PetscSolver final : public LinearSolver {
         if (matrix.innerIndexPtr()[k] == j) diagonalSum += std::abs(entries[k]);
         const PetscInt slot = position_[static_cast<std::size_t>(k)];
         if (slot >= 0) {
-          shareValues_[static_cast<std::size_t>(slot)] = entries[k];
+          target[slot] = entries[k];
         } else if (entries[k] != 0.0) {
           outside = true;
         }
       }
     }
     return outside;
+  }
+
+  // The identity rows of the embedding at the scale of K's mean |diagonal|, so that they neither
+  // dominate nor vanish in AMG's strength-of-connection test.
+  void setIdentityRows(PetscScalar* target, double diagonalSum) const {
+    const double scale = equations_ > 0 && diagonalSum > 0 ? diagonalSum / equations_ : 1.0;
+    for (PetscCount slot : identitySlots_) target[slot] = scale;
   }
 
   void createSolver() {
@@ -753,20 +752,11 @@ class PetscSolver final : public LinearSolver {
   // the layout of the CSR), with no copy and no search.
   void setValues(const SparseMatrix& matrix) {
     if (distributed_) return addShares(matrix);
-    const double* entries = matrix.valuePtr();
     double diagonalSum = 0;
     PetscScalar* values = nullptr;
     check(MatSeqAIJGetArray(matrix_, &values), "MatSeqAIJGetArray");
-    for (Eigen::Index j = 0; j < equations_; ++j) {
-      for (int k = matrix.outerIndexPtr()[j]; k < matrix.outerIndexPtr()[j + 1]; ++k) {
-        values[position_[static_cast<std::size_t>(k)]] = entries[k];
-        if (matrix.innerIndexPtr()[k] == j) diagonalSum += std::abs(entries[k]);
-      }
-    }
-    // Identity rows of the embedding at the scale of K's diagonal, so that they neither
-    // dominate nor vanish in AMG's strength-of-connection test.
-    const double scale = equations_ > 0 && diagonalSum > 0 ? diagonalSum / equations_ : 1.0;
-    for (PetscInt r : identityRows_) values[rowStart_[r]] = scale;
+    scatterValues(matrix, values, diagonalSum);
+    setIdentityRows(values, diagonalSum);
     check(MatSeqAIJRestoreArray(matrix_, &values), "MatSeqAIJRestoreArray");
   }
 
@@ -776,7 +766,7 @@ class PetscSolver final : public LinearSolver {
   // when the pattern was analyzed) makes every process preallocate again.
   void addShares(const SparseMatrix& matrix) {
     double diagonalSum = 0;
-    int outside = gatherShare(matrix, diagonalSum) ? 1 : 0, anyOutside = 0;
+    int outside = scatterValues(matrix, shareValues_.data(), diagonalSum) ? 1 : 0, anyOutside = 0;
     MPI_Allreduce(&outside, &anyOutside, 1, MPI_INT, MPI_LOR, PETSC_COMM_WORLD);
     if (anyOutside) {
       // New COO maps give the matrix a new nonzero state: the preconditioner (a MUMPS factor
@@ -785,13 +775,12 @@ class PetscSolver final : public LinearSolver {
       releaseFactor();
       preallocateShare(matrix);
       diagonalSum = 0;
-      gatherShare(matrix, diagonalSum);
+      scatterValues(matrix, shareValues_.data(), diagonalSum);
     }
-    // The identity rows of the embedding (see setValues), scaled by the mean over all shares.
+    // The identity rows scaled by the mean over all shares.
     double total = 0;
     MPI_Allreduce(&diagonalSum, &total, 1, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
-    const double scale = equations_ > 0 && total > 0 ? total / equations_ : 1.0;
-    for (PetscCount slot : identitySlots_) shareValues_[static_cast<std::size_t>(slot)] = scale;
+    setIdentityRows(shareValues_.data(), total);
     check(MatSetValuesCOO(matrix_, shareValues_.data(), INSERT_VALUES), "MatSetValuesCOO");
     // A COO entry of a row another process owns: its value travels (the indices were sent once).
     statistics_.matrixBytesSent += static_cast<double>(remoteEntries_) * sizeof(PetscScalar);
@@ -856,14 +845,16 @@ class PetscSolver final : public LinearSolver {
   std::vector<PetscInt> dofOfRow_;        // embedded system: nodal dof of each row
   int rank_ = 0, processes_ = 1;
   bool distributed_ = false;
-  std::vector<PetscInt> rowStart_, columns_, identityRows_;
-  // Where each entry of K's storage goes: into the value array (one process), among the COO
-  // entries (several; -1: not in this process's share).
+  // CSR of the rows kept (buildRows); several processes drop it once PETSc has its COO maps.
+  std::vector<PetscInt> rowStart_, columns_;
+  std::vector<PetscInt> identityRows_;  // the rows of the embedding's identity (owned ones)
+  // Where each entry of K's storage goes (buildRows): into the value array (one process), among
+  // the COO entries (several; -1: not in this process's share).
   std::vector<PetscInt> position_;
   // Several processes: the COO entries of this process (preallocateShare), their values, the
   // rows of other processes the share adds to, and how many COO entries lie in such rows.
   std::vector<PetscScalar> shareValues_;
-  std::vector<PetscCount> identitySlots_;  // the COO entries of this process's identity rows
+  std::vector<PetscCount> identitySlots_;  // where the identity rows' entries are (as position_)
   std::vector<char> sharedRows_;
   long remoteEntries_ = 0;
   Mat matrix_ = nullptr;
