@@ -425,28 +425,31 @@ class PetscSolver final : public LinearSolver {
     }
   }
 
-  // CSR of the (embedded) system in PETSc's row numbering, and where each entry of Eigen's
-  // column-major storage lands in it (K is not symmetric in general: CSR of K = CSC of K^T).
+  // One process: the CSR of the whole (embedded) system in PETSc's row numbering (buildRows).
   void buildStructure(const SparseMatrix& matrix) {
+    numberSystem(matrix);
+    buildRows(matrix, [](PetscInt) { return true; });
+  }
+
+  // The system's size (embedded or not), the PETSc row of every equation and the identity rows
+  // of the embedding this process owns.
+  void numberSystem(const SparseMatrix& matrix) {
     equations_ = matrix.rows();
     nonZeros_ = matrix.nonZeros();
-    const bool embed = iterative() &&
-                       static_cast<Eigen::Index>(layout_.freeDofs.size()) == equations_ &&
-                       layout_.coordinates.cols() > 0;
-    embedded_ = embed;
-    size_ = embed ? static_cast<PetscInt>(3 * layout_.coordinates.cols())
-                  : static_cast<PetscInt>(equations_);
+    embedded_ = iterative() && static_cast<Eigen::Index>(layout_.freeDofs.size()) == equations_ &&
+                layout_.coordinates.cols() > 0;
+    size_ = embedded_ ? static_cast<PetscInt>(3 * layout_.coordinates.cols())
+                      : static_cast<PetscInt>(equations_);
     row_.resize(static_cast<std::size_t>(equations_));
-    numberRows(embed);
+    numberRows(embedded_);
     identityRows_.clear();
-    if (embed) {
-      std::vector<char> isFree(static_cast<std::size_t>(size_), 0);
-      for (PetscInt r : row_) isFree[static_cast<std::size_t>(r)] = 1;
-      for (PetscInt r = 0; r < size_; ++r) {
-        if (!isFree[static_cast<std::size_t>(r)]) identityRows_.push_back(r);
-      }
+    if (!embedded_) return;
+    std::vector<char> isFree(static_cast<std::size_t>(size_), 0);
+    for (PetscInt r : row_) isFree[static_cast<std::size_t>(r)] = 1;
+    const auto [first, last] = ownedRows();
+    for (PetscInt r = first; r < last; ++r) {
+      if (!isFree[static_cast<std::size_t>(r)]) identityRows_.push_back(r);
     }
-    buildRows(matrix, [](PetscInt) { return true; });
   }
 
   // The rows of the (embedded) system that `keep` accepts, in PETSc's numbering, as CSR from K's
@@ -540,23 +543,8 @@ class PetscSolver final : public LinearSolver {
   // 30th session every tangent went in column by column through MatSetValues (a search per
   // entry in a row-oriented matrix): about 0.1 s more per tangent at 104 k equations.
   void createDistributedMatrix(const SparseMatrix& matrix) {
-    equations_ = matrix.rows();
-    nonZeros_ = matrix.nonZeros();
-    embedded_ = iterative() && static_cast<Eigen::Index>(layout_.freeDofs.size()) == equations_ &&
-                layout_.coordinates.cols() > 0;
-    size_ = embedded_ ? static_cast<PetscInt>(3 * layout_.coordinates.cols())
-                      : static_cast<PetscInt>(equations_);
-    row_.resize(static_cast<std::size_t>(equations_));
-    numberRows(embedded_);
+    numberSystem(matrix);
     const auto [first, last] = ownedRows();
-    identityRows_.clear();
-    if (embedded_) {
-      std::vector<char> isFree(static_cast<std::size_t>(size_), 0);
-      for (PetscInt r : row_) isFree[static_cast<std::size_t>(r)] = 1;
-      for (PetscInt r = first; r < last; ++r) {
-        if (!isFree[static_cast<std::size_t>(r)]) identityRows_.push_back(r);
-      }
-    }
     const PetscInt local = last - first;
     check(MatCreate(PETSC_COMM_WORLD, &matrix_), "MatCreate");
     check(MatSetSizes(matrix_, local, local, size_, size_), "MatSetSizes");
