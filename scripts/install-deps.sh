@@ -10,6 +10,8 @@ packages=(
   # results writer therefore uses as well (one HDF5 library per process); mpirun for runs on
   # several processes (issue 17)
   libpetsc-real3.18-dev libhdf5-openmpi-dev openmpi-bin
+  # Scotch partitions the mesh of such runs (PETSc's PT-Scotch brings it too)
+  libscotch-dev
   libmuparser-dev libcli11-dev libfmt-dev libgtest-dev libgmock-dev
   libopenblas0-serial
   python3-h5py python3-matplotlib python3-numpy python3-scipy

@@ -49,7 +49,7 @@ class Model : public NonlinearProblem {
   void sumOverProcesses(Eigen::VectorXd& values) override;
   std::vector<int> nodeOwners() const override { return nodeOwner_; }
 
-  // A run on several processes (model_distribution.cpp): partitions the nodes (PT-Scotch),
+  // A run on several processes (model_distribution.cpp): partitions the nodes (Scotch),
   // gives each element to the process owning most of its nodes and the contact points of each
   // pair dealt out in turn (point k to process k mod P). Every process keeps the whole mesh and
   // state (the contact search runs everywhere); in Newton's iterations it evaluates and adds only

@@ -102,7 +102,7 @@ std::string Model::distribute(ProcessGroup& group) {
       std::minmax_element(elementsOf.begin(), elementsOf.end());
   const auto [fewestPoints, mostPoints] = std::minmax_element(pointsOf.begin(), pointsOf.end());
   return fmt::format(
-      "{} processes (PT-Scotch partition): {}-{} nodes, {}-{} elements and {}-{} contact points "
+      "{} processes (Scotch partition): {}-{} nodes, {}-{} elements and {}-{} contact points "
       "per process, whole mesh on each",
       group.size(), *fewestNodes, *mostNodes, *fewestElements, *mostElements, *fewestPoints,
       *mostPoints);

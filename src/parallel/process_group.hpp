@@ -34,7 +34,7 @@ class ProcessGroup {
   virtual std::pair<int, std::string> agree(int code, const std::string& message) = 0;
   // Owner rank of every vertex of a graph (CSR: neighbours of vertex v are
   // adjacency[offsets[v] .. offsets[v + 1]), no self-loops), parts balanced in vertex count
-  // and few cut edges (PT-Scotch through PETSc); the same vector on every process.
+  // and few cut edges (Scotch on rank 0); the same vector on every process and in every run.
   virtual std::vector<int> partition(const std::vector<int>& offsets,
                                      const std::vector<int>& adjacency) = 0;
   // Sets up two HDF5 property lists (ids as hid_t) so that the processes open one file

@@ -15,6 +15,9 @@
   serial run's steps, iterations and forces (the prediction and its reference norms are formed
   from the process-summed tangent products), and a restart on 2 processes from step 8 of that
   file (its restart data carry the step's increment) continues as the uninterrupted serial run.
+--case repeat: decks/repeatable_amg.deck (20 k equations) three times on 2 processes with
+  GMRES + BoomerAMG: the same Krylov and Newton iterations and residual history, bit for bit,
+  and the same displacements (users compare iteration counts between runs).
 --case errors: `check` on 2 processes prints the serial output once; a deck error on 2
   processes exits with the serial exit code and is reported once; a persistent inverted element (input/stress/inverted_element_persistent.deck) exits
   with the serial code, keeps the same converged steps and names the element once; SIGKILL of
@@ -349,6 +352,34 @@ def predictor_case(args):
           f"{worst:.1e}); restarted from step 8 on 2: {rest} steps as serial ({rest_worst:.1e})")
 
 
+def repeat_case(args):
+    deck = os.path.join(args.source, "tests/regression/parallel/decks/repeatable_amg.deck")
+    histories, krylov = [], []
+    for attempt in range(3):
+        results = os.path.join(args.scratch, f"run{attempt}.h5")
+        result = run_ok(args, 2, "run", deck, "-o", results, "--solver", "amg", "--cost", "-q")
+        costs = [line for line in result.stdout.splitlines() if line.startswith("cost: ")]
+        check(len(costs) == 1, f"no cost line:\n{result.stdout}")
+        krylov.append(re.search(r'"krylov_iterations": *(\d+)', costs[0])[1])
+        with h5py.File(results, "r") as h5:
+            check(h5["summary"].attrs["outcome"] == "completed", f"{results}: not completed")
+            history = h5["convergence"][...]
+            last = step_names(h5)[-1]
+            histories.append((history, h5["steps"][last]["displacement"][...]))
+    (first, displacement), *others = histories
+    for attempt, (history, other_displacement) in enumerate(others, 2):
+        check(len(history) == len(first),
+              f"run {attempt}: {len(history)} Newton iterations, run 1: {len(first)}")
+        for column in ("step", "iteration", "residual", "relative_energy"):
+            check(np.array_equal(history[column], first[column]),
+                  f"run {attempt}: {column} differs from run 1's")
+        check(np.array_equal(other_displacement, displacement),
+              f"run {attempt}: displacements differ from run 1's")
+    check(len(set(krylov)) == 1, f"Krylov iterations differ between runs: {krylov}")
+    print(f"3 runs on 2 processes: {len(first)} Newton iterations and {krylov[0]} Krylov "
+          f"iterations each, residual histories and displacements equal bit for bit")
+
+
 def wait_until_unlocked(path, seconds=60):
     """Waits until no process holds the writer's lock on `path`. A process being ended still
     holds its files for a moment after its command line has gone from /proc (the kernel frees
@@ -430,13 +461,13 @@ def main():
     parser.add_argument("--scratch", required=True)
     parser.add_argument("--case", required=True,
                         choices=["crossing", "restart", "errors", "segments", "augmented",
-                                 "predictor"])
+                                 "predictor", "repeat"])
     args = parser.parse_args()
     shutil.rmtree(args.scratch, ignore_errors=True)
     os.makedirs(args.scratch)
     {"crossing": crossing_case, "restart": restart_case, "errors": errors_case,
      "segments": segments_case, "augmented": augmented_case,
-     "predictor": predictor_case}[args.case](args)
+     "predictor": predictor_case, "repeat": repeat_case}[args.case](args)
 
 
 if __name__ == "__main__":

@@ -6,8 +6,11 @@
 // process: MUMPS to round-off, GMRES + BoomerAMG / GAMG within cond(K) times their tolerance.
 // A share that gains a nonzero in a row of another process only after the pattern was analyzed,
 // in rows not coupled to its own (a contact item with no node there), must still count.
+// The mesh partition repeats exactly: with PT-Scotch it changed from call to call, and with it
+// every iteration count of an AMG-preconditioned run.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <utility>
 #include <vector>
 
@@ -120,6 +123,47 @@ TEST(DistributedPetsc, ANonzeroThatAppearsAfterTheAnalysisInARowOfAnotherProcess
               allowedError(method, cond1))
         << solver->name() << ", rank " << rank << ", far spring 1";
   }
+}
+
+// The node graph of an n x n x n lattice of hexahedra (each node coupled to its 26 neighbours).
+std::pair<std::vector<int>, std::vector<int>> hexLatticeGraph(int n) {
+  std::vector<int> offsets{0}, adjacency;
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        for (int dk = -1; dk <= 1; ++dk)
+          for (int dj = -1; dj <= 1; ++dj)
+            for (int di = -1; di <= 1; ++di) {
+              const int a = i + di, b = j + dj, c = k + dk;
+              if ((di || dj || dk) && a >= 0 && a < n && b >= 0 && b < n && c >= 0 && c < n)
+                adjacency.push_back(latticeNode(n, a, b, c));
+            }
+        offsets.push_back(static_cast<int>(adjacency.size()));
+      }
+  return {offsets, adjacency};
+}
+
+TEST(DistributedPetsc, TheMeshPartitionIsBalancedAndTheSameInEveryCall) {
+  constexpr int kGraphSide = 24;  // 13 824 vertices
+  const auto [offsets, adjacency] = hexLatticeGraph(kGraphSide);
+  const int parts = processGroup().size();
+  const std::vector<int> first = processGroup().partition(offsets, adjacency);
+  ASSERT_EQ(first.size(), offsets.size() - 1);
+  // Balanced to Scotch's 1 % (plus one vertex): every part within it of the mean.
+  std::vector<double> count(static_cast<std::size_t>(parts), 0.0);
+  for (int owner : first) {
+    ASSERT_GE(owner, 0);
+    ASSERT_LT(owner, parts);
+    ++count[static_cast<std::size_t>(owner)];
+  }
+  const double mean = static_cast<double>(first.size()) / parts;
+  for (double c : count) EXPECT_LE(std::abs(c - mean), 0.01 * mean + 1);
+  // The same partition on every process: the sum over the processes is size() times this one.
+  std::vector<double> owners(first.begin(), first.end()), summed = owners;
+  processGroup().sum(summed.data(), summed.size());
+  for (std::size_t v = 0; v < owners.size(); ++v) ASSERT_EQ(summed[v], parts * owners[v]);
+  for (int call = 1; call < 6; ++call)
+    EXPECT_EQ(processGroup().partition(offsets, adjacency), first) << "call " << call;
 }
 
 TEST(DistributedPetsc, RunsOnSeveralProcesses) {
