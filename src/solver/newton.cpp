@@ -397,8 +397,8 @@ NewtonResult Newton::solve(const NewtonStep& step, const NewtonSpec& spec,
       if (linear_.iterative()) {
         if (iteration > 1) {
           const double ratio = norms.residual / previousResidual;
-          forcing =
-              std::min({kForcingMax, kForcingGamma * ratio * ratio, norms.relativeResidual()});
+          forcing = std::min({kForcingMax, kForcingGamma * ratio * ratio,
+                              kForcingResidualFactor * norms.relativeResidual()});
           forcing = std::max(forcing, kForcingMin);
         }
         linear_.setForcing(forcing);
