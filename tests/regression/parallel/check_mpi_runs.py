@@ -18,6 +18,9 @@
 --case repeat: decks/repeatable_amg.deck (20 k equations) three times on 2 processes with
   GMRES + BoomerAMG: the same Krylov and Newton iterations and residual history, bit for bit,
   and the same displacements (users compare iteration counts between runs).
+--case inexact: input/performance/scaling_20k.deck on 2 processes with GMRES + BoomerAMG and
+  with MUMPS: Newton iterations per step with the inexact solves at most one more than with the
+  direct solver's (issue 13), and the contact force of the last step equal to 1e-6.
 --case errors: `check` on 2 processes prints the serial output once; a deck error on 2
   processes exits with the serial exit code and is reported once; a persistent inverted element (input/stress/inverted_element_persistent.deck) exits
   with the serial code, keeps the same converged steps and names the element once; SIGKILL of
@@ -380,6 +383,32 @@ def repeat_case(args):
           f"iterations each, residual histories and displacements equal bit for bit")
 
 
+def steps_of(path):
+    """Newton iterations per step and the last step's contact force of a results file."""
+    with h5py.File(path, "r") as h5:
+        check(h5["summary"].attrs["outcome"] == "completed", f"{path}: not completed")
+        names = step_names(h5)
+        counts = [int(h5["steps"][name].attrs["iterations"]) for name in names]
+        return counts, h5["steps"][names[-1]]["contact/interface/total_force"][...]
+
+
+def inexact_case(args):
+    deck = os.path.join(args.source, "input/performance/scaling_20k.deck")
+    runs = {}
+    for solver in ("mumps", "amg"):
+        results = os.path.join(args.scratch, f"{solver}.h5")
+        run_ok(args, 2, "run", deck, "-o", results, "--solver", solver, "-q")
+        runs[solver] = steps_of(results)
+    (direct, direct_force), (inexact, inexact_force) = runs["mumps"], runs["amg"]
+    check(len(direct) == len(inexact), f"steps: MUMPS {direct}, BoomerAMG {inexact}")
+    check(all(i <= d + 1 for i, d in zip(inexact, direct)),
+          f"Newton iterations per step: BoomerAMG {inexact}, MUMPS {direct} (at most +1 each)")
+    error = np.abs(inexact_force - direct_force).max() / np.abs(direct_force).max()
+    check(error <= 1e-6, f"last step's contact force differs by {error:.2e}")
+    print(f"Newton iterations per step: BoomerAMG {inexact}, MUMPS {direct}; contact force "
+          f"equal to {error:.1e}")
+
+
 def wait_until_unlocked(path, seconds=60):
     """Waits until no process holds the writer's lock on `path`. A process being ended still
     holds its files for a moment after its command line has gone from /proc (the kernel frees
@@ -461,13 +490,14 @@ def main():
     parser.add_argument("--scratch", required=True)
     parser.add_argument("--case", required=True,
                         choices=["crossing", "restart", "errors", "segments", "augmented",
-                                 "predictor", "repeat"])
+                                 "predictor", "repeat", "inexact"])
     args = parser.parse_args()
     shutil.rmtree(args.scratch, ignore_errors=True)
     os.makedirs(args.scratch)
     {"crossing": crossing_case, "restart": restart_case, "errors": errors_case,
      "segments": segments_case, "augmented": augmented_case,
-     "predictor": predictor_case, "repeat": repeat_case}[args.case](args)
+     "predictor": predictor_case, "repeat": repeat_case,
+     "inexact": inexact_case}[args.case](args)
 
 
 if __name__ == "__main__":
