@@ -4,7 +4,7 @@
 #include <fmt/format.h>
 #include <hdf5.h>
 #include <mpi.h>
-#include <petscmat.h>
+#include <petscsys.h>
 
 #include <algorithm>
 #include <cstdio>  // before scotch.h, which uses FILE
@@ -76,12 +76,12 @@ class MpiGroup final : public ProcessGroup {
 
   // Every rank holds the whole graph, so rank 0 partitions it with sequential Scotch and
   // broadcasts the owners. Not PT-Scotch through PETSc's MatPartitioning, as before the
-  // thirty-second session: its threads made the partition differ from run to run (3 to 5
-  // different partitions of the 20 k scaling deck in 10 runs, even with the whole graph on one
-  // process), and with it the summation order, the AMG hierarchy and the iteration counts.
-  // Scotch's context makes the sequential partition deterministic (a fixed random seed, no
-  // thread-order dependence): the same deck on the same number of processes is partitioned the
-  // same way in every run.
+  // thirty-second session: its threads made the partition differ from run to run (3 different
+  // partitions of the 20 k scaling deck's graph in 10 runs, 3 to 5 with its random generator
+  // reset or the whole graph on one process), and with it the summation order, the AMG
+  // hierarchy and the iteration counts. Scotch's context makes the sequential partition
+  // deterministic (a fixed random seed, no thread-order dependence): the same deck on the same
+  // number of processes is partitioned the same way in every run.
   std::vector<int> partition(const std::vector<int>& offsets,
                              const std::vector<int>& adjacency) override {
     const int vertices = static_cast<int>(offsets.size()) - 1;
