@@ -158,6 +158,15 @@ TEST(DistributedPetsc, TheMeshPartitionIsBalancedAndTheSameInEveryCall) {
   }
   const double mean = static_cast<double>(first.size()) / parts;
   for (double c : count) EXPECT_LE(std::abs(c - mean), 0.01 * mean + 1);
+  // Few cut edges: a cut by a plane of the lattice crosses 2 (3n - 2)^2 adjacency entries, and
+  // parts - 1 planes cut it into `parts` slabs; a partition that ignored the graph (every k-th
+  // vertex, say) would cut most of them.
+  int cut = 0;
+  for (std::size_t v = 0; v + 1 < offsets.size(); ++v)
+    for (int k = offsets[v]; k < offsets[v + 1]; ++k)
+      cut += first[v] != first[static_cast<std::size_t>(adjacency[static_cast<std::size_t>(k)])];
+  const int planeCut = 2 * (3 * kGraphSide - 2) * (3 * kGraphSide - 2);
+  EXPECT_LE(cut, 1.5 * (parts - 1) * planeCut);
   // The same partition on every process: the sum over the processes is size() times this one.
   std::vector<double> owners(first.begin(), first.end()), summed = owners;
   processGroup().sum(summed.data(), summed.size());
