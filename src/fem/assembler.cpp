@@ -203,6 +203,7 @@ struct Assembler::Impl {
   std::vector<ThreadBuffers> threadBuffers;
   std::size_t minItemsForThreads = kDefaultMinItemsForThreads;
   ItemFilter filter;
+  std::vector<char> ownedNodes;  // empty on one process
 
   Impl(const DofMap& dofMap, std::vector<Contribution*> list)
       : dofs(dofMap), contributions(std::move(list)), states(contributions.size()) {}
@@ -239,7 +240,7 @@ bool Assembler::Impl::patternStale(const SystemMatrices& tangent) const {
 }
 
 void Assembler::Impl::rebuildPattern(SystemMatrices& tangent, AssemblyTimings& timings) {
-  const NodeGraph graph = buildNodeGraph(contributions, dofs.numNodes(), filter);
+  const NodeGraph graph = buildNodeGraph(contributions, dofs.numNodes(), filter, ownedNodes);
   SparseMatrix free, coupling;
   buildSparsityPattern(dofs, graph, free, coupling);
   ++timings.patternBuilds;
@@ -366,8 +367,9 @@ void Assembler::setMinItemsForThreads(std::size_t items) {
   impl_->minItemsForThreads = items;
 }
 
-void Assembler::setItemFilter(ItemFilter filter) {
+void Assembler::setItemFilter(ItemFilter filter, std::vector<char> ownedNodes) {
   impl_->filter = std::move(filter);
+  impl_->ownedNodes = std::move(ownedNodes);
 }
 
 int Assembler::threads() const {

@@ -66,7 +66,9 @@ class Assembler {
   const AssemblyTimings& timings() const { return timings_; }
   int threads() const;
   // Restricts the items evaluated and added (contribution index in the constructor's order).
-  void setItemFilter(ItemFilter filter);
+  // `ownedNodes` (one flag per node, on several processes) makes the pattern's rows of the
+  // owned nodes complete (buildNodeGraph).
+  void setItemFilter(ItemFilter filter, std::vector<char> ownedNodes = {});
   // Contributions with less work per color than this many Hex8 elements spread over 8 colors
   // are evaluated on one thread (default 256; each contribution's items weighted by their
   // measured cost, see assembler.cpp).

@@ -11,14 +11,29 @@
 namespace cc {
 
 NodeGraph buildNodeGraph(std::span<Contribution* const> contributions, int numNodes,
-                         const ItemFilter& filter) {
-  std::vector<NodeIncidence> incidences;
+                         const ItemFilter& filter, std::span<const char> ownedNodes) {
+  // Items this process adds (all of them, or those the filter assembles), and on several
+  // processes the others' items with a node here: their entries in this process's rows.
+  std::vector<NodeIncidence> incidences, othersIncidences;
   incidences.reserve(contributions.size());
+  const bool completeOwnedRows = !ownedNodes.empty() && filter;
+  const auto touchesOwned = [&](const Contribution& contribution, std::size_t item) {
+    for (int node : contribution.itemNodes(item)) {
+      if (ownedNodes[static_cast<std::size_t>(node)]) return true;
+    }
+    return false;
+  };
   for (std::size_t c = 0; c < contributions.size(); ++c) {
     std::function<bool(std::size_t)> assembled;
     if (filter)
       assembled = [&filter, c](std::size_t item) { return filter(c, item) == ItemRole::Assemble; };
     incidences.push_back(nodeIncidence(*contributions[c], numNodes, assembled));
+    if (!completeOwnedRows) continue;
+    const Contribution& contribution = *contributions[c];
+    othersIncidences.push_back(nodeIncidence(
+        contribution, numNodes, [&filter, &touchesOwned, &contribution, c](std::size_t item) {
+          return filter(c, item) != ItemRole::Assemble && touchesOwned(contribution, item);
+        }));
   }
   NodeGraph graph;
   graph.offsets.assign(static_cast<std::size_t>(numNodes) + 1, 0);
@@ -27,15 +42,20 @@ NodeGraph buildNodeGraph(std::span<Contribution* const> contributions, int numNo
     const std::size_t first = graph.neighbours.size();
     graph.neighbours.push_back(node);
     lastSeenBy[node] = node;
-    for (std::size_t c = 0; c < contributions.size(); ++c) {
-      const NodeIncidence& incidence = incidences[c];
+    const auto addNodesOf = [&](const NodeIncidence& incidence, const Contribution& contribution,
+                                bool ownedOnly) {
       for (std::size_t k = incidence.offsets[node]; k < incidence.offsets[node + 1]; ++k) {
-        for (int neighbour : contributions[c]->itemNodes(incidence.items[k])) {
+        for (int neighbour : contribution.itemNodes(incidence.items[k])) {
           if (lastSeenBy[neighbour] == node) continue;
+          if (ownedOnly && !ownedNodes[static_cast<std::size_t>(neighbour)]) continue;
           lastSeenBy[neighbour] = node;
           graph.neighbours.push_back(neighbour);
         }
       }
+    };
+    for (std::size_t c = 0; c < contributions.size(); ++c) {
+      addNodesOf(incidences[c], *contributions[c], false);
+      if (completeOwnedRows) addNodesOf(othersIncidences[c], *contributions[c], true);
     }
     std::sort(graph.neighbours.begin() + static_cast<std::ptrdiff_t>(first),
               graph.neighbours.end());

@@ -19,9 +19,13 @@ struct NodeGraph {
 };
 
 // With a filter, only the items this process assembles (ItemRole::Assemble) count; every node
-// keeps itself as neighbour (the diagonal blocks).
+// keeps itself as neighbour (the diagonal blocks). With a filter and `ownedNodes` (one flag per
+// node: its rows are this process's), the rows of the owned nodes are complete: the other
+// processes' items with an owned node add their node pairs to these rows, as entries this
+// process leaves zero. PETSc's matrix then takes each process's own rows as they are, and only
+// the values another process adds travel (parallel/petsc_solver.cpp).
 NodeGraph buildNodeGraph(std::span<Contribution* const> contributions, int numNodes,
-                         const ItemFilter& filter = {});
+                         const ItemFilter& filter = {}, std::span<const char> ownedNodes = {});
 
 // Resizes `free` and `coupling` to the pattern of `graph` with zero values. Because equations
 // are numbered node by node, visiting neighbours in ascending order yields sorted row indices.

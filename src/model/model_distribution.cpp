@@ -84,13 +84,17 @@ std::string Model::distribute(ProcessGroup& group) {
   }
   // Contributions are the element sets, then the contact pairs (model_builder.cpp).
   const std::size_t numSets = elementSets_.size();
-  assembler_->setItemFilter([this, numSets](std::size_t contribution, std::size_t item) {
-    if (contribution < numSets) {
-      return ownsElement_[contribution][item] ? ItemRole::Assemble : ItemRole::Skip;
-    }
-    return ownsContactPoint(*contactPairs_[contribution - numSets], item) ? ItemRole::Assemble
-                                                                          : ItemRole::Skip;
-  });
+  std::vector<char> ownedNodes(nodeOwner_.size(), 0);
+  for (std::size_t n = 0; n < nodeOwner_.size(); ++n) ownedNodes[n] = nodeOwner_[n] == group.rank();
+  assembler_->setItemFilter(
+      [this, numSets](std::size_t contribution, std::size_t item) {
+        if (contribution < numSets) {
+          return ownsElement_[contribution][item] ? ItemRole::Assemble : ItemRole::Skip;
+        }
+        return ownsContactPoint(*contactPairs_[contribution - numSets], item) ? ItemRole::Assemble
+                                                                              : ItemRole::Skip;
+      },
+      std::move(ownedNodes));
   std::vector<int> pointsOf(processes, 0);
   for (const auto& pair : contactPairs_) {
     for (std::size_t item = 0; item < pair->itemCount(); ++item) {

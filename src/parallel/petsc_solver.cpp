@@ -16,10 +16,11 @@
 // in their order and the matrix is MATAIJ = SeqAIJ with exactly the CSR structure of K, whose
 // value array setValues fills in place. On several processes (SystemLayout::nodeOwner) the rows
 // are renumbered so that each process owns a contiguous range holding the dofs of its nodes
-// (MATMPIAIJ); each process gives its share of K as COO entries (MatSetPreallocationCOO once
-// per pattern, MatSetValuesCOO per tangent: PETSc sums the shares and sends the entries of rows
-// another process owns), sets the right-hand side rows it owns, and receives the whole
-// solution (VecScatterCreateToAll), so that Newton goes on identically on every process.
+// (MATMPIAIJ); each process's pattern holds its own rows complete, which become its local
+// rows in place (MatCreateMPIAIJWithSplitArrays once per pattern, values written into them per
+// tangent, and the nonzeros of other processes' rows added through PETSc's stash), sets the
+// right-hand side rows it owns, and receives the whole solution (VecScatterCreateToAll), so
+// that Newton goes on identically on every process.
 #include <fmt/format.h>
 #include <omp.h>
 #include <petscksp.h>
@@ -536,94 +537,111 @@ class PetscSolver final : public LinearSolver {
     }
   }
 
-  // Several processes: the distributed matrix gets its structure and its values through
-  // PETSc's COO interface (MatSetPreallocationCOO once per pattern, MatSetValuesCOO per
-  // tangent): PETSc maps every entry to its place, and the entries of rows another process owns
-  // to that process, once, and each tangent then costs a gather and one exchange. Until the
-  // 30th session every tangent went in column by column through MatSetValues (a search per
-  // entry in a row-oriented matrix): about 0.1 s more per tangent at 104 k equations.
+  // Several processes: each process's pattern holds its own rows complete (the other
+  // processes' items add zero entries there, sparsity_pattern.hpp), so the rows it owns are
+  // the local rows of the MPIAIJ matrix as they are. They are split into PETSc's diagonal and
+  // off-diagonal blocks here, in arrays this object keeps and PETSc uses in place
+  // (MatCreateMPIAIJWithSplitArrays), and each tangent writes its values straight into them;
+  // only the nonzeros this process's items add to other processes' rows travel (addRemote).
+  // Until the 33rd session the structure went through PETSc's COO interface, whose sort of
+  // every entry was most of an analysis (bulk 79 k deck, two processes: 5.2 of 6.3 s in 32
+  // analyses), and every tangent through MatSetValuesCOO.
   void createDistributedMatrix(const SparseMatrix& matrix) {
     numberSystem(matrix);
+    buildRows(matrix, [this](PetscInt r) { return ownsRow(r); });
+    splitOwnedRows();
     const auto [first, last] = ownedRows();
     const PetscInt local = last - first;
-    check(MatCreate(PETSC_COMM_WORLD, &matrix_), "MatCreate");
-    check(MatSetSizes(matrix_, local, local, size_, size_), "MatSetSizes");
-    check(MatSetType(matrix_, MATAIJ), "MatSetType");
+    check(MatCreateMPIAIJWithSplitArrays(PETSC_COMM_WORLD, local, local, size_, size_,
+                                         diagonalStart_.data(), diagonalColumns_.data(),
+                                         diagonalValues_.data(), offStart_.data(),
+                                         offColumns_.data(), offValues_.data(), &matrix_),
+          "MatCreateMPIAIJWithSplitArrays");
     if (embedded_) check(MatSetBlockSize(matrix_, 3), "MatSetBlockSize");
-    // The rows of other processes coupled to a row of this process: every item this process
-    // owns has a node here (the element's vote, the contact point's slave node), so these
-    // hold every row its share can add to, also those of contact items that are still zero.
-    sharedRows_.assign(static_cast<std::size_t>(size_), 0);
-    for (Eigen::Index j = 0; j < equations_; ++j) {
-      if (!ownsRow(row_[j])) continue;
-      for (int k = matrix.outerIndexPtr()[j]; k < matrix.outerIndexPtr()[j + 1]; ++k) {
-        const PetscInt r = row_[matrix.innerIndexPtr()[k]];
-        if (!ownsRow(r)) sharedRows_[static_cast<std::size_t>(r)] = 1;
-      }
-    }
-    markSharedRows(matrix);
-    preallocateShare(matrix);
-  }
-
-  // Marks the rows another process owns that this process's share adds to now (its nonzero
-  // entries there: a pattern may hold zeros, such as a contact item that is not touching).
-  void markSharedRows(const SparseMatrix& matrix) {
-    const double* entries = matrix.valuePtr();
-    for (Eigen::Index k = 0; k < nonZeros_; ++k) {
-      const PetscInt r = row_[matrix.innerIndexPtr()[k]];
-      if (entries[k] != 0.0 && !ownsRow(r)) sharedRows_[static_cast<std::size_t>(r)] = 1;
-    }
-  }
-
-  // The COO entries of this process: every entry of its share's pattern in the rows it owns and
-  // in the shared rows of other processes (sharedRows_), and the diagonal of its identity rows.
-  // The matrix's structure is the union over the processes. Collective.
-  //
-  // The entries go in sorted by row, and by column within a row. PETSc sorts them so (a
-  // quicksort of the rows, then of each row's columns) and maps each entry to its place; given
-  // in Eigen's column-major order, that sort was most of an analysis (bulk 79 k deck, two
-  // processes: 14 % of rank 0's samples in PetscSortIntWithIntCountArrayPair and
-  // PetscSortIntWithCountArray, 31 analyses). position_ then says where each entry of K's
-  // storage goes among the COO entries (-1: not in this process's share), as on one process.
-  void preallocateShare(const SparseMatrix& matrix) {
-    buildRows(matrix, [this](PetscInt r) { return inShare(r); });
-    std::vector<PetscInt> rows(columns_.size());
-    remoteEntries_ = 0;
-    for (PetscInt r = 0; r < size_; ++r) {
-      std::fill(rows.begin() + rowStart_[r], rows.begin() + rowStart_[r + 1], r);
-      if (sharedRows_[static_cast<std::size_t>(r)])
-        remoteEntries_ += rowStart_[r + 1] - rowStart_[r];
-    }
-    shareValues_.assign(columns_.size(), 0.0);
-    check(MatSetPreallocationCOO(matrix_, static_cast<PetscCount>(rows.size()), rows.data(),
-                                 columns_.data()),
-          "MatSetPreallocationCOO");
-    // PETSc keeps its own maps; the structure is not needed here any more.
     std::vector<PetscInt>().swap(columns_);
     std::vector<PetscInt>().swap(rowStart_);
   }
 
-  // Whether the COO entries of this process hold the entries of row r (preallocateShare).
-  bool inShare(PetscInt r) const { return ownsRow(r) || sharedRows_[static_cast<std::size_t>(r)]; }
+  // The owned rows of the CSR (buildRows) as PETSc's diagonal block (columns this process
+  // owns, numbered from its first row) and off-diagonal block (global columns; PETSc renumbers
+  // them in place, ascending, when it creates the matrix), and position_ and identitySlots_
+  // remapped to them: a slot s >= 0 is diagonalValues_[s], s <= -2 is offValues_[-2 - s],
+  // -1 a row another process owns.
+  void splitOwnedRows() {
+    const auto [first, last] = ownedRows();
+    const std::size_t local = static_cast<std::size_t>(last - first);
+    diagonalStart_.assign(local + 1, 0);
+    offStart_.assign(local + 1, 0);
+    const PetscCount base = rowStart_[static_cast<std::size_t>(first)];
+    std::vector<PetscInt> slotOf(static_cast<std::size_t>(rowStart_[last] - base));
+    diagonalColumns_.clear();
+    offColumns_.clear();
+    for (std::size_t i = 0; i < local; ++i) {
+      const std::size_t r = static_cast<std::size_t>(first) + i;
+      for (PetscCount k = rowStart_[r]; k < rowStart_[r + 1]; ++k) {
+        const PetscInt c = columns_[static_cast<std::size_t>(k)];
+        PetscInt& slot = slotOf[static_cast<std::size_t>(k - base)];
+        if (c >= first && c < last) {
+          slot = static_cast<PetscInt>(diagonalColumns_.size());
+          diagonalColumns_.push_back(c - first);
+        } else {
+          slot = -2 - static_cast<PetscInt>(offColumns_.size());
+          offColumns_.push_back(c);
+        }
+      }
+      diagonalStart_[i + 1] = static_cast<PetscInt>(diagonalColumns_.size());
+      offStart_[i + 1] = static_cast<PetscInt>(offColumns_.size());
+    }
+    for (PetscInt& position : position_) {
+      if (position >= 0) position = slotOf[static_cast<std::size_t>(position - base)];
+    }
+    for (PetscCount& slot : identitySlots_) slot = slotOf[static_cast<std::size_t>(slot - base)];
+    diagonalValues_.assign(diagonalColumns_.size(), 0.0);
+    offValues_.assign(offColumns_.size(), 0.0);
+    // PETSc reads no element of an empty block, but wants an address.
+    diagonalColumns_.reserve(1);
+    offColumns_.reserve(1);
+    diagonalValues_.reserve(1);
+    offValues_.reserve(1);
+  }
 
-  // K's values to their places (position_) in `target`: the matrix's value array (one
-  // process) or the COO values (several). Returns whether a nonzero has no place (a row not
-  // kept by preallocateShare); adds |diagonal| to diagonalSum.
-  bool scatterValues(const SparseMatrix& matrix, PetscScalar* target, double& diagonalSum) const {
+  // One process: K's values to their places (position_) in the matrix's value array; adds
+  // |diagonal| to diagonalSum.
+  void scatterValues(const SparseMatrix& matrix, PetscScalar* target, double& diagonalSum) const {
     const double* entries = matrix.valuePtr();
-    bool outside = false;
     for (Eigen::Index j = 0; j < equations_; ++j) {
       for (int k = matrix.outerIndexPtr()[j]; k < matrix.outerIndexPtr()[j + 1]; ++k) {
         if (matrix.innerIndexPtr()[k] == j) diagonalSum += std::abs(entries[k]);
+        target[position_[static_cast<std::size_t>(k)]] = entries[k];
+      }
+    }
+  }
+
+  // Several processes: K's values of the rows this process owns into the blocks' arrays
+  // (splitOwnedRows), and its nonzeros in other processes' rows to PETSc's stash, which the
+  // assembly adds into their owners' rows (there, the pattern has them: sparsity_pattern.hpp).
+  // Returns how many values went to other processes.
+  long scatterDistributed(const SparseMatrix& matrix, double& diagonalSum) {
+    const double* entries = matrix.valuePtr();
+    long remote = 0;
+    for (Eigen::Index j = 0; j < equations_; ++j) {
+      const PetscInt column = row_[j];
+      for (int k = matrix.outerIndexPtr()[j]; k < matrix.outerIndexPtr()[j + 1]; ++k) {
+        const int i = matrix.innerIndexPtr()[k];
+        if (i == j) diagonalSum += std::abs(entries[k]);
         const PetscInt slot = position_[static_cast<std::size_t>(k)];
         if (slot >= 0) {
-          target[slot] = entries[k];
+          diagonalValues_[static_cast<std::size_t>(slot)] = entries[k];
+        } else if (slot <= -2) {
+          offValues_[static_cast<std::size_t>(-2 - slot)] = entries[k];
         } else if (entries[k] != 0.0) {
-          outside = true;
+          check(MatSetValues(matrix_, 1, &row_[i], 1, &column, &entries[k], ADD_VALUES),
+                "MatSetValues");
+          ++remote;
         }
       }
     }
-    return outside;
+    return remote;
   }
 
   // The identity rows of the embedding at the scale of K's mean |diagonal|, so that they neither
@@ -748,30 +766,27 @@ class PetscSolver final : public LinearSolver {
     check(MatSeqAIJRestoreArray(matrix_, &values), "MatSeqAIJRestoreArray");
   }
 
-  // Several processes: the values of this process's COO entries (preallocateShare), summed
-  // over the processes by MatSetValuesCOO. A nonzero of the share in a row another process owns
-  // that the COO entries do not cover (an item with no node on this process that was zero
-  // when the pattern was analyzed) makes every process preallocate again.
+  // Several processes: every process writes the values of its own rows in place and adds its
+  // nonzeros in other processes' rows; the assembly (collective) sums those into their rows.
   void addShares(const SparseMatrix& matrix) {
     double diagonalSum = 0;
-    int outside = scatterValues(matrix, shareValues_.data(), diagonalSum) ? 1 : 0, anyOutside = 0;
-    MPI_Allreduce(&outside, &anyOutside, 1, MPI_INT, MPI_LOR, PETSC_COMM_WORLD);
-    if (anyOutside) {
-      // New COO maps give the matrix a new nonzero state: the preconditioner (a MUMPS factor
-      // whose handle factorOnce keeps, an AMG hierarchy) starts afresh.
-      markSharedRows(matrix);
-      releaseFactor();
-      preallocateShare(matrix);
-      diagonalSum = 0;
-      scatterValues(matrix, shareValues_.data(), diagonalSum);
-    }
+    const long remote = scatterDistributed(matrix, diagonalSum);
     // The identity rows scaled by the mean over all shares.
     double total = 0;
     MPI_Allreduce(&diagonalSum, &total, 1, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
-    setIdentityRows(shareValues_.data(), total);
-    check(MatSetValuesCOO(matrix_, shareValues_.data(), INSERT_VALUES), "MatSetValuesCOO");
-    // A COO entry of a row another process owns: its value travels (the indices were sent once).
-    statistics_.matrixBytesSent += static_cast<double>(remoteEntries_) * sizeof(PetscScalar);
+    setIdentityRows(diagonalValues_.data(), total);
+    check(MatAssemblyBegin(matrix_, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
+    if (const PetscErrorCode code = MatAssemblyEnd(matrix_, MAT_FINAL_ASSEMBLY); code != 0) {
+      // PETSc's message above names the entry; error 63 (out of range) is a value added to
+      // another process's row outside that row's pattern.
+      throw std::logic_error(fmt::format(
+          "PETSc: MatAssemblyEnd failed (error {}); a process's pattern must hold every item "
+          "with a node it owns, also the other processes' (sparsity_pattern.hpp)",
+          code));
+    }
+    // Each value sent carries its row and column.
+    statistics_.matrixBytesSent +=
+        static_cast<double>(remote) * (sizeof(PetscScalar) + 2 * sizeof(PetscInt));
   }
 
   // Rigid-body modes of the current configuration (three translations, three rotations).
@@ -811,6 +826,10 @@ class PetscSolver final : public LinearSolver {
     if (coordinates_) VecDestroy(&coordinates_);
     if (toAll_) VecScatterDestroy(&toAll_);
     if (all_) VecDestroy(&all_);
+    for (auto* indices : {&diagonalStart_, &diagonalColumns_, &offStart_, &offColumns_})
+      std::vector<PetscInt>().swap(*indices);
+    std::vector<PetscScalar>().swap(diagonalValues_);
+    std::vector<PetscScalar>().swap(offValues_);
     factored_ = false;
     hierarchyBuilt_ = false;
   }
@@ -836,15 +855,14 @@ class PetscSolver final : public LinearSolver {
   // CSR of the rows kept (buildRows); several processes drop it once PETSc has its COO maps.
   std::vector<PetscInt> rowStart_, columns_;
   std::vector<PetscInt> identityRows_;  // the rows of the embedding's identity (owned ones)
-  // Where each entry of K's storage goes (buildRows): into the value array (one process), among
-  // the COO entries (several; -1: not in this process's share).
+  // Where each entry of K's storage goes (buildRows): into the value array (one process), into
+  // the diagonal or off-diagonal block (several; splitOwnedRows says how).
   std::vector<PetscInt> position_;
-  // Several processes: the COO entries of this process (preallocateShare), their values, the
-  // rows of other processes the share adds to, and how many COO entries lie in such rows.
-  std::vector<PetscScalar> shareValues_;
   std::vector<PetscCount> identitySlots_;  // where the identity rows' entries are (as position_)
-  std::vector<char> sharedRows_;
-  long remoteEntries_ = 0;
+  // Several processes: the owned rows' two blocks in CSR, which the matrix uses in place (they
+  // live as long as matrix_; destroy() frees them after it).
+  std::vector<PetscInt> diagonalStart_, diagonalColumns_, offStart_, offColumns_;
+  std::vector<PetscScalar> diagonalValues_, offValues_;
   Mat matrix_ = nullptr;
   Vec solution_ = nullptr, rhs_ = nullptr, coordinates_ = nullptr;
   VecScatter toAll_ = nullptr;  // several processes: the solution to every process

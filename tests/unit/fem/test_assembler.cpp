@@ -222,6 +222,42 @@ TEST(Assembler, PatternKeptWhileTopologyUnchangedAndRebuiltWhenItChanges) {
   EXPECT_EQ(assembler.timings().assemblies, 7);
 }
 
+// On several processes a process's pattern holds its own items' entries and, in the rows of the
+// nodes it owns, every other item's too (as zeros): PETSc takes those rows as they are, and the
+// values an item adds to another process's rows go there (parallel/petsc_solver.cpp).
+TEST(Assembler, TheRowsOfOwnedNodesHoldTheOtherProcessesItems) {
+  ListFixture fixture;  // items {0,1} {1,2} {3,4}
+  Assembler assembler(fixture.dofs, {&fixture.list});
+  // This process owns nodes 0 and 1 and assembles item {0,1}; {1,2} and {3,4} are another's.
+  assembler.setItemFilter(
+      [](std::size_t, std::size_t item) { return item == 0 ? ItemRole::Assemble : ItemRole::Skip; },
+      {1, 1, 0, 0, 0, 0});
+  Eigen::VectorXd force;
+  SystemMatrices matrices;
+  assembler.assemble(fixture.state, force, &matrices);
+  const auto blockPresent = [&matrices](int rowNode, int columnNode) {
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) {
+        bool found = false;
+        const int column = 3 * columnNode + b;
+        for (SparseMatrix::InnerIterator it(matrices.free, column); it; ++it)
+          found = found || it.row() == 3 * rowNode + a;
+        if (!found) return false;
+      }
+    return true;
+  };
+  EXPECT_TRUE(blockPresent(0, 1));  // its own item, both ways
+  EXPECT_TRUE(blockPresent(1, 0));
+  EXPECT_TRUE(blockPresent(1, 2));   // the other's item {1,2} in owned row 1,
+  EXPECT_FALSE(blockPresent(2, 1));  // not in row 2, which another process owns
+  EXPECT_FALSE(blockPresent(3, 4));  // {3,4} has no owned node
+  EXPECT_FALSE(blockPresent(4, 3));
+  // The values are its own item's only (identity tangents): node 1's diagonal has item {0,1}'s
+  // 1, node 2's diagonal nothing.
+  EXPECT_EQ(matrices.free.coeff(3, 3), 1.0);
+  EXPECT_EQ(matrices.free.coeff(6, 6), 0.0);
+}
+
 TEST(Assembler, ReportsTheFirstFailingItemByContributionName) {
   ListFixture fixture;
   fixture.list.failing = {2, 1};
