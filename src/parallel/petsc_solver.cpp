@@ -852,7 +852,7 @@ class PetscSolver final : public LinearSolver {
   std::vector<PetscInt> dofOfRow_;        // embedded system: nodal dof of each row
   int rank_ = 0, processes_ = 1;
   bool distributed_ = false;
-  // CSR of the rows kept (buildRows); several processes drop it once PETSc has its COO maps.
+  // CSR of the rows kept (buildRows); several processes drop it once it is split in two blocks.
   std::vector<PetscInt> rowStart_, columns_;
   std::vector<PetscInt> identityRows_;  // the rows of the embedding's identity (owned ones)
   // Where each entry of K's storage goes (buildRows): into the value array (one process), into
