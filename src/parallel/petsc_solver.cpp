@@ -542,10 +542,10 @@ class PetscSolver final : public LinearSolver {
   // the local rows of the MPIAIJ matrix as they are. They are split into PETSc's diagonal and
   // off-diagonal blocks here, in arrays this object keeps and PETSc uses in place
   // (MatCreateMPIAIJWithSplitArrays), and each tangent writes its values straight into them;
-  // only the nonzeros this process's items add to other processes' rows travel (addRemote).
-  // Until the 33rd session the structure went through PETSc's COO interface, whose sort of
-  // every entry was most of an analysis (bulk 79 k deck, two processes: 5.2 of 6.3 s in 32
-  // analyses), and every tangent through MatSetValuesCOO.
+  // only the nonzeros this process's items add to other processes' rows travel
+  // (scatterDistributed). Until the 33rd session the structure went through PETSc's COO
+  // interface, whose sort of every entry was most of an analysis (bulk 79 k deck, two
+  // processes: 5.2 of 6.3 s in 32 analyses), and every tangent through MatSetValuesCOO.
   void createDistributedMatrix(const SparseMatrix& matrix) {
     numberSystem(matrix);
     buildRows(matrix, [this](PetscInt r) { return ownsRow(r); });
