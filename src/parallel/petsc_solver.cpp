@@ -550,6 +550,7 @@ class PetscSolver final : public LinearSolver {
     numberSystem(matrix);
     buildRows(matrix, [this](PetscInt r) { return ownsRow(r); });
     splitOwnedRows();
+    listRemoteEntries(matrix);
     const auto [first, last] = ownedRows();
     const PetscInt local = last - first;
     check(MatCreateMPIAIJWithSplitArrays(PETSC_COMM_WORLD, local, local, size_, size_,
@@ -605,6 +606,43 @@ class PetscSolver final : public LinearSolver {
     offValues_.reserve(1);
   }
 
+  // The entries of K in rows other processes own (position_ -1), sorted by row and column, so
+  // that each tangent adds them with one MatSetValues call per row and their owners insert
+  // runs of a row (remoteStart_ delimits the rows' runs).
+  void listRemoteEntries(const SparseMatrix& matrix) {
+    struct Remote {
+      PetscInt row, column;
+      Eigen::Index entry;
+    };
+    std::vector<Remote> remote;
+    for (Eigen::Index j = 0; j < equations_; ++j) {
+      for (int k = matrix.outerIndexPtr()[j]; k < matrix.outerIndexPtr()[j + 1]; ++k) {
+        if (position_[static_cast<std::size_t>(k)] != -1) continue;
+        remote.push_back({row_[matrix.innerIndexPtr()[k]], row_[j], k});
+      }
+    }
+    std::sort(remote.begin(), remote.end(), [](const Remote& a, const Remote& b) {
+      return a.row != b.row ? a.row < b.row : a.column < b.column;
+    });
+    remoteRows_.clear();
+    remoteStart_.assign(1, 0);
+    remoteColumns_.resize(remote.size());
+    remoteEntries_.resize(remote.size());
+    std::size_t longest = 0;
+    for (std::size_t e = 0; e < remote.size(); ++e) {
+      if (e == 0 || remote[e].row != remote[e - 1].row) {
+        if (e > 0) remoteStart_.push_back(e);
+        remoteRows_.push_back(remote[e].row);
+      }
+      longest = std::max(longest, e + 1 - remoteStart_.back());
+      remoteColumns_[e] = remote[e].column;
+      remoteEntries_[e] = remote[e].entry;
+    }
+    remoteStart_.push_back(remote.size());
+    remoteSendColumns_.resize(longest);
+    remoteSendValues_.resize(longest);
+  }
+
   // One process: K's values to their places (position_) in the matrix's value array; adds
   // |diagonal| to diagonalSum.
   void scatterValues(const SparseMatrix& matrix, PetscScalar* target, double& diagonalSum) const {
@@ -618,30 +656,40 @@ class PetscSolver final : public LinearSolver {
   }
 
   // Several processes: K's values of the rows this process owns into the blocks' arrays
-  // (splitOwnedRows), and its nonzeros in other processes' rows to PETSc's stash, which the
-  // assembly adds into their owners' rows (there, the pattern has them: sparsity_pattern.hpp).
-  // Returns how many values went to other processes.
+  // (splitOwnedRows), and its nonzeros in other processes' rows to PETSc's stash, row by row
+  // (listRemoteEntries), which the assembly adds into their owners' rows (there, the pattern
+  // has them: sparsity_pattern.hpp). Returns how many values went to other processes.
   long scatterDistributed(const SparseMatrix& matrix, double& diagonalSum) {
     const double* entries = matrix.valuePtr();
-    long remote = 0;
     for (Eigen::Index j = 0; j < equations_; ++j) {
-      const PetscInt column = row_[j];
       for (int k = matrix.outerIndexPtr()[j]; k < matrix.outerIndexPtr()[j + 1]; ++k) {
-        const int i = matrix.innerIndexPtr()[k];
-        if (i == j) diagonalSum += std::abs(entries[k]);
+        if (matrix.innerIndexPtr()[k] == j) diagonalSum += std::abs(entries[k]);
         const PetscInt slot = position_[static_cast<std::size_t>(k)];
         if (slot >= 0) {
           diagonalValues_[static_cast<std::size_t>(slot)] = entries[k];
         } else if (slot <= -2) {
           offValues_[static_cast<std::size_t>(-2 - slot)] = entries[k];
-        } else if (entries[k] != 0.0) {
-          check(MatSetValues(matrix_, 1, &row_[i], 1, &column, &entries[k], ADD_VALUES),
-                "MatSetValues");
-          ++remote;
         }
       }
     }
-    return remote;
+    // The nonzeros only: a contact point dealt to this process that is not touching adds
+    // nothing, and most of its entries lie in other processes' rows.
+    long sent = 0;
+    for (std::size_t r = 0; r < remoteRows_.size(); ++r) {
+      PetscInt count = 0;
+      for (std::size_t e = remoteStart_[r]; e < remoteStart_[r + 1]; ++e) {
+        const double value = entries[remoteEntries_[e]];
+        if (value == 0.0) continue;
+        remoteSendValues_[static_cast<std::size_t>(count)] = value;
+        remoteSendColumns_[static_cast<std::size_t>(count++)] = remoteColumns_[e];
+      }
+      if (count == 0) continue;
+      check(MatSetValues(matrix_, 1, &remoteRows_[r], count, remoteSendColumns_.data(),
+                         remoteSendValues_.data(), ADD_VALUES),
+            "MatSetValues");
+      sent += count;
+    }
+    return sent;
   }
 
   // The identity rows of the embedding at the scale of K's mean |diagonal|, so that they neither
@@ -863,6 +911,12 @@ class PetscSolver final : public LinearSolver {
   // live as long as matrix_; destroy() frees them after it).
   std::vector<PetscInt> diagonalStart_, diagonalColumns_, offStart_, offColumns_;
   std::vector<PetscScalar> diagonalValues_, offValues_;
+  // Several processes: K's entries in other processes' rows (listRemoteEntries) and one row's
+  // nonzeros as they are sent.
+  std::vector<PetscInt> remoteRows_, remoteColumns_, remoteSendColumns_;
+  std::vector<std::size_t> remoteStart_;
+  std::vector<Eigen::Index> remoteEntries_;
+  std::vector<PetscScalar> remoteSendValues_;
   Mat matrix_ = nullptr;
   Vec solution_ = nullptr, rhs_ = nullptr, coordinates_ = nullptr;
   VecScatter toAll_ = nullptr;  // several processes: the solution to every process
