@@ -1,5 +1,6 @@
-// Node graph and compressed-column pattern construction. Memory stays O(nonzeros): one node
-// incidence list per contribution and a marker array, never per-item index maps.
+// Node graph and compressed-column pattern construction. Memory stays O(nonzeros): node
+// incidence lists per contribution (two on several processes) and a marker array, never
+// per-item index maps.
 #include "fem/sparsity_pattern.hpp"
 
 #include <algorithm>
