@@ -643,35 +643,31 @@ class PetscSolver final : public LinearSolver {
     remoteSendValues_.resize(longest);
   }
 
-  // One process: K's values to their places (position_) in the matrix's value array; adds
-  // |diagonal| to diagonalSum.
-  void scatterValues(const SparseMatrix& matrix, PetscScalar* target, double& diagonalSum) const {
-    const double* entries = matrix.valuePtr();
-    for (Eigen::Index j = 0; j < equations_; ++j) {
-      for (int k = matrix.outerIndexPtr()[j]; k < matrix.outerIndexPtr()[j + 1]; ++k) {
-        if (matrix.innerIndexPtr()[k] == j) diagonalSum += std::abs(entries[k]);
-        target[position_[static_cast<std::size_t>(k)]] = entries[k];
-      }
-    }
-  }
-
-  // Several processes: K's values of the rows this process owns into the blocks' arrays
-  // (splitOwnedRows), and its nonzeros in other processes' rows to PETSc's stash, row by row
-  // (listRemoteEntries), which the assembly adds into their owners' rows (there, the pattern
-  // has them: sparsity_pattern.hpp). Returns how many values went to other processes.
-  long scatterDistributed(const SparseMatrix& matrix, double& diagonalSum) {
+  // K's values of the rows this process owns to their places (position_): slot s >= 0 in
+  // `diagonal` (one process: the matrix's value array; several: the diagonal block), s <= -2 in
+  // offValues_ (several processes only); adds |diagonal| to diagonalSum.
+  void scatterOwned(const SparseMatrix& matrix, PetscScalar* diagonal, double& diagonalSum) {
     const double* entries = matrix.valuePtr();
     for (Eigen::Index j = 0; j < equations_; ++j) {
       for (int k = matrix.outerIndexPtr()[j]; k < matrix.outerIndexPtr()[j + 1]; ++k) {
         if (matrix.innerIndexPtr()[k] == j) diagonalSum += std::abs(entries[k]);
         const PetscInt slot = position_[static_cast<std::size_t>(k)];
         if (slot >= 0) {
-          diagonalValues_[static_cast<std::size_t>(slot)] = entries[k];
+          diagonal[slot] = entries[k];
         } else if (slot <= -2) {
           offValues_[static_cast<std::size_t>(-2 - slot)] = entries[k];
         }
       }
     }
+  }
+
+  // Several processes: the owned rows into the blocks' arrays (scatterOwned), and K's nonzeros
+  // in other processes' rows to PETSc's stash, row by row (listRemoteEntries), which the
+  // assembly adds into their owners' rows (there, the pattern has them: sparsity_pattern.hpp).
+  // Returns how many values went to other processes.
+  long scatterDistributed(const SparseMatrix& matrix, double& diagonalSum) {
+    scatterOwned(matrix, diagonalValues_.data(), diagonalSum);
+    const double* entries = matrix.valuePtr();
     // The nonzeros only: a contact point dealt to this process that is not touching adds
     // nothing, and most of its entries lie in other processes' rows.
     long sent = 0;
@@ -809,7 +805,7 @@ class PetscSolver final : public LinearSolver {
     double diagonalSum = 0;
     PetscScalar* values = nullptr;
     check(MatSeqAIJGetArray(matrix_, &values), "MatSeqAIJGetArray");
-    scatterValues(matrix, values, diagonalSum);
+    scatterOwned(matrix, values, diagonalSum);
     setIdentityRows(values, diagonalSum);
     check(MatSeqAIJRestoreArray(matrix_, &values), "MatSeqAIJRestoreArray");
   }

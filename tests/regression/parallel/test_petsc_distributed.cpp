@@ -2,9 +2,8 @@
 // `-np 3`: each process passes its share of a spring lattice (the springs of the nodes it owns:
 // in the pattern of its own springs and of its own rows complete, as NonlinearProblem's shares
 // are, or in the whole pattern with the other springs as zeros), and every process must
-// receive the solution of the
-// whole system, against CHOLMOD / UMFPACK on one
-// process: MUMPS to round-off, GMRES + BoomerAMG / GAMG within cond(K) times their tolerance.
+// receive the solution of the whole system, against CHOLMOD / UMFPACK on one process: MUMPS
+// to round-off, GMRES + BoomerAMG / GAMG within cond(K) times their tolerance.
 // A share that gains a nonzero in a row of another process only after the pattern was analyzed,
 // in rows not coupled to its own (a contact item with no node there), must still count.
 // The mesh partition repeats exactly: with PT-Scotch it changed from call to call, and with it
