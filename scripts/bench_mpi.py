@@ -7,8 +7,8 @@ peak memory per process, the time of element assembly, contact (search + points)
 solve per process, and the bytes moved between processes per Newton iteration.
 
     /usr/bin/python3 scripts/bench_mpi.py [--sizes 57k,125k] [--build build]
-        [--runs mumps_np1,mumps_np2,gamg_np1,gamg_np2,amg_np2] [--press-only] [--pin] [--twice]
-        [--cores] [--predictor] [--output FILE.json]
+        [--runs mumps_np1,mumps_np2,gamg_np1,gamg_np2,amg_np2,auto_np2] [--press-only] [--pin]
+        [--twice] [--cores] [--predictor] [--output FILE.json]
 
 The sizes bulk79k, bulk341k and bulk1.2M are the 3D bulk geometry of issue 13
 (input/performance/bulk_79k.deck with its slab meshed 54 x 24 x 18, 90 x 40 x 30, 135 x 60 x 45),
@@ -53,6 +53,10 @@ def run(command, timeout):
         record.update(json.loads(cost[-1][len("cost: "):]))
     else:
         record["stderr"] = result.stderr[-2000:]
+    # Fallbacks and switches of the linear solver (auto's GAMG -> BoomerAMG) go to stderr.
+    notes = [line for line in result.stderr.splitlines() if "GMRES+" in line]
+    if notes:
+        record["solver_notes"] = notes[:20]
     return record
 
 
@@ -100,7 +104,8 @@ def configurations(args, deck, work):
                                  ("mumps_np2", mpirun + ["-np", "2"], "mumps"),
                                  ("gamg_np1", [], "gamg"),
                                  ("gamg_np2", mpirun + ["-np", "2"], "gamg"),
-                                 ("amg_np2", mpirun + ["-np", "2"], "amg")):
+                                 ("amg_np2", mpirun + ["-np", "2"], "amg"),
+                                 ("auto_np2", mpirun + ["-np", "2"], "auto")):
         for pinned, pin in pinnings(args, name):
             results = os.path.join(work, f"{os.path.basename(deck)[:-5]}_{pinned}.h5")
             command = pin + prefix + [covcontact, "run", deck, "-o", results, "-q", "--cost",

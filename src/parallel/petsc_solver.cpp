@@ -66,9 +66,6 @@ void check(PetscErrorCode code, const char* what) {
   if (code != 0) throw std::runtime_error(fmt::format("PETSc: {} failed (error {})", what, code));
 }
 
-// Krylov iterations before a solve counts as stalled (it then falls back to a direct solve).
-// BoomerAMG-GMRES needs 10-40 on the tangents measured (docs/performance/solvers.md).
-constexpr PetscInt kMaxKrylovIterations = 400;
 constexpr PetscInt kGmresRestart = 100;
 // A lagged AMG hierarchy: the set-up (aggregation, smoothed prolongation, Galerkin products) is
 // half of the linear solver's time (GAMG, 57 k scaling deck on 2 processes: 7.0 s of 13.4 s),
@@ -880,7 +877,7 @@ class PetscSolver final : public LinearSolver {
 
   PetscMethod method_;
   double relativeTolerance_ = 1e-8;
-  PetscInt maxIterations_ = kMaxKrylovIterations;
+  PetscInt maxIterations_ = kKrylovIterationLimit;
   SystemLayout layout_;
   KrylovReport last_;
   std::function<bool()> stopPoll_;

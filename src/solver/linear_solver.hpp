@@ -75,6 +75,10 @@ struct SystemLayout {
   std::vector<int> nodeOwner;    // process owning each node; empty on one process
 };
 
+// Krylov iterations before a solve counts as stalled (the caller then falls back to a direct
+// solve). BoomerAMG-GMRES needs 10-40 on the tangents measured (docs/performance/solvers.md).
+inline constexpr int kKrylovIterationLimit = 400;
+
 // A Krylov solve that stalled or diverged: the caller redoes the solve with a direct solver.
 class KrylovFailure : public std::runtime_error {
  public:
@@ -122,7 +126,8 @@ class LinearSolver {
   // must reach (Newton's forcing term), the mesh layout of the equations, the last solve.
   virtual bool iterative() const { return false; }
   virtual void setRelativeTolerance(double) {}
-  // Krylov iterations after which a solve counts as stalled (a test forces the fallback).
+  // Krylov iterations after which a solve counts as stalled (default kKrylovIterationLimit;
+  // TangentSolver holds GAMG to a convergence rate with it, a test forces the fallback).
   virtual void setIterationLimit(int) {}
   virtual void setLayout(const SystemLayout&) {}
   virtual KrylovReport lastSolve() const { return {}; }

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <stdexcept>
 
 #include "common/errors.hpp"
@@ -102,19 +103,20 @@ void TangentSolver::factorizeWith(Backend& backend, const SystemMatrices& system
 bool TangentSolver::usesPetsc(Eigen::Index size) {
   using Method = LinearSolverSpec::Method;
   const bool iterativeBySize = method_ == Method::Auto && size >= kIterativeBreakEven;
+  const bool gamgFirst = iterativeBySize && size >= autoRule_.gamgFrom &&
+                         (distributed_ || !autoRule_.gamgNeedsSeveralProcesses);
   // On several processes every solve is PETSc's: CHOLMOD and UMFPACK work on one process, so
   // auto below the break-even, cholmod and umfpack mean MUMPS (distributed LU) there.
   const bool petsc = distributed_ || method_ == Method::Mumps || method_ == Method::SuperluDist ||
                      method_ == Method::Amg || method_ == Method::Gamg || iterativeBySize;
   if (petsc && !petsc_.solver) {
     const PetscMethod petscMethod = method_ == Method::SuperluDist ? PetscMethod::SuperluDist
+                                    : method_ == Method::Gamg || gamgFirst ? PetscMethod::Gamg
                                     : method_ == Method::Amg || iterativeBySize
                                         ? PetscMethod::BoomerAmg
-                                    : method_ == Method::Gamg ? PetscMethod::Gamg
-                                                              : PetscMethod::Mumps;
-    petsc_.solver = makePetscSolver(petscMethod);
-    petsc_.solver->setLayout(layout_);
-    if (stopPoll_) petsc_.solver->setStopPoll(stopPoll_);
+                                        : PetscMethod::Mumps;
+    attachPetsc(petscMethod);
+    gamgProbation_ = gamgFirst;
   }
   if (choice_.empty()) {
     const std::string backend = petsc ? petsc_.solver->name() : directSolvers();
@@ -122,6 +124,12 @@ bool TangentSolver::usesPetsc(Eigen::Index size) {
     if (method_ == Method::Auto) {
       choice_ += fmt::format(" ({} equations {} {}", size, size >= kIterativeBreakEven ? ">=" : "<",
                              kIterativeBreakEven);
+      if (gamgFirst) {
+        choice_ += fmt::format(
+            "; GAMG from {}, BoomerAMG once a new GAMG hierarchy converges slower than {} "
+            "decades per Krylov iteration",
+            autoRule_.gamgFrom, autoRule_.gamgSlowestRate);
+      }
       if (size >= kUnsymmetricMumpsBreakEven && !distributed_) {
         choice_ +=
             fmt::format("; unsymmetric systems to MUMPS from {}", kUnsymmetricMumpsBreakEven);
@@ -135,6 +143,13 @@ bool TangentSolver::usesPetsc(Eigen::Index size) {
     if (notify_) notify_("linear solver: " + choice_);
   }
   return petsc;
+}
+
+void TangentSolver::attachPetsc(PetscMethod method) {
+  petsc_.solver = makePetscSolver(method);
+  petsc_.analyzedPattern = 0;
+  petsc_.solver->setLayout(layout_);
+  if (stopPoll_) petsc_.solver->setStopPoll(stopPoll_);
 }
 
 void TangentSolver::setStopPoll(std::function<bool()> poll) {
@@ -224,7 +239,9 @@ void TangentSolver::factorize(const SystemMatrices& system) {
   size_ = system.free.rows();
   if (size_ == 0) return;  // everything prescribed: nothing to solve
   if (usesPetsc(size_)) {
+    const int kept = petsc_.solver->statistics().reusedPreconditioners;
     factorizeWith(petsc_, system);
+    freshHierarchy_ = petsc_.solver->statistics().reusedPreconditioners == kept;
   } else {
     factorizeDirect(system);
   }
@@ -251,17 +268,26 @@ Eigen::VectorXd TangentSolver::solveWithReusedFactor(const Eigen::VectorXd& rhs)
   return active_->solve(rhs);
 }
 
+void TangentSolver::setKrylovLimits() {
+  active_->setRelativeTolerance(forcing_);
+  int limit = iterationLimit_ > 0 ? iterationLimit_ : kKrylovIterationLimit;
+  if (iterationLimit_ == 0 && onGamgProbation() && freshHierarchy_) {
+    // The iterations a solve at the rule's slowest rate needs to reach the tolerance.
+    const double decades = std::max(1.0, -std::log10(forcing_));
+    limit = std::min(limit, static_cast<int>(std::ceil(decades / autoRule_.gamgSlowestRate)));
+  }
+  active_->setIterationLimit(limit);
+}
+
 Eigen::VectorXd TangentSolver::solve(const Eigen::VectorXd& rhs) {
   if (size_ == 0) return Eigen::VectorXd();
   if (!active_) throw std::logic_error("TangentSolver: solve() without a factorization");
   Eigen::VectorXd solution;
-  if (active_->iterative()) {
-    active_->setRelativeTolerance(forcing_);
-    if (iterationLimit_ > 0) active_->setIterationLimit(iterationLimit_);
-  }
+  if (active_->iterative()) setKrylovLimits();
   try {
     solution = reusing_ ? solveWithReusedFactor(rhs) : active_->solve(rhs);
   } catch (const KrylovFailure& failure) {
+    if (onGamgProbation()) return leaveGamg(rhs, failure);
     // A Krylov solve that stalled, or a PETSc direct solve that missed: CHOLMOD/UMFPACK (MUMPS
     // on several processes).
     ++krylovFallbacks_;
@@ -282,10 +308,38 @@ Eigen::VectorXd TangentSolver::solve(const Eigen::VectorXd& rhs) {
   return solution;
 }
 
+Eigen::VectorXd TangentSolver::leaveGamg(const Eigen::VectorXd& rhs, const KrylovFailure& failure) {
+  if (!freshHierarchy_) {
+    // A kept hierarchy may only be stale: GAMG gets a new one (the failed solve asked for it)
+    // and is judged on that.
+    factorizeWith(petsc_, *system_);
+    freshHierarchy_ = true;
+    return solve(rhs);
+  }
+  if (notify_) {
+    notify_(
+        fmt::format("{}: slower than {} decades per Krylov iteration with a new hierarchy; "
+                    "GMRES+BoomerAMG solves this iteration and the rest of the run",
+                    failure.what(), autoRule_.gamgSlowestRate));
+  }
+  retiredStatistics_ += petsc_.solver->statistics();
+  // The run's record of the choice (printed, and the results file's summary) says so too.
+  choice_ += fmt::format("; GMRES+BoomerAMG from Krylov solve {} on, GAMG too slow",
+                         retiredStatistics_.solves);
+  if (notify_) notify_("linear solver: " + choice_);
+  gamgProbation_ = false;
+  active_ = nullptr;
+  attachPetsc(PetscMethod::BoomerAmg);
+  factorizeWith(petsc_, *system_);
+  freshHierarchy_ = true;
+  return solve(rhs);
+}
+
 LinearSolverStatistics TangentSolver::statistics() const {
   LinearSolverStatistics total = symmetric_.solver->statistics();
   total += general_.solver->statistics();
   if (petsc_.solver) total += petsc_.solver->statistics();
+  total += retiredStatistics_;
   if (mumpsDirect_.solver) total += mumpsDirect_.solver->statistics();
   total.krylovFallbacks = krylovFallbacks_;
   total.reusedPreconditioners += reusedFactors_;

@@ -3,8 +3,10 @@
 // definite (legal with contact) UMFPACK takes over for the rest of the step; unsymmetric
 // tangents go to UMFPACK (under `solver=auto` from kUnsymmetricMumpsBreakEven equations to
 // MUMPS instead). `solver=auto` uses the direct pair below kIterativeBreakEven free
-// equations and GMRES + BoomerAMG (PETSc, hypre) above it. An iterative solve that stalls or
-// diverges is redone with the direct pair for that iteration, and the note says so. Each
+// equations and GMRES + BoomerAMG (PETSc, hypre) above it; on several processes from
+// kGamgFirstFrom it starts with GMRES + GAMG and keeps it while GAMG converges fast enough
+// (AutoPreconditionerRule). An iterative solve that stalls or diverges is redone with the
+// direct pair for that iteration, and the note says so. Each
 // backend repeats its symbolic analysis only when SystemMatrices::patternVersion changes. On
 // several processes (SystemLayout::nodeOwner given) every system goes to PETSc: MUMPS where the
 // serial direct pair would be used, and for the fallback of a failed Krylov solve.
@@ -43,6 +45,28 @@ namespace cc {
 // 16.8 min; thirtieth session, with the tangent through PETSc's COO interface, 1.13 M: 18.4
 // against 13.1 min). Every paper and regression deck is far below the break-even (at most ~20 k).
 inline constexpr Eigen::Index kIterativeBreakEven = 50000;
+
+// Free equations from which `solver=auto` on several processes starts with GMRES + GAMG instead
+// of BoomerAMG, and the slowest convergence it accepts from GAMG: a solve with a new GAMG
+// hierarchy that has not reached its tolerance after log10(1 / tolerance) / kGamgSlowestRate
+// Krylov iterations is redone with BoomerAMG, which serves the rest of the run. Thin scaling
+// decks on two processes (thirty-fourth session, `--threads 1`, whole runs): 125 k BoomerAMG
+// 62.7 s against GAMG 68.9 s; 388 k (twenty-ninth session) 365.9 against 304.6 s; 1.13 M 18.4-19.3
+// against 13.1 min. GAMG's rate there: 0.13-0.47 decades per iteration in every solve of the
+// 125 k deck. On the bulk die (bulk_79k.deck) it was 0.04-0.10, with 0.059 in the first solve,
+// against BoomerAMG's 0.3-0.4; GAMG then stalled in the first drag step, where BoomerAMG is 11
+// times faster over the run. One process: BoomerAMG was the faster on thin decks at every size
+// measured (to 1.13 M), so it starts there.
+inline constexpr Eigen::Index kGamgFirstFrom = 250000;
+inline constexpr double kGamgSlowestRate = 0.07;
+
+// Which preconditioner `solver=auto` starts with above kIterativeBreakEven (the measured
+// defaults above; tests move them).
+struct AutoPreconditionerRule {
+  Eigen::Index gamgFrom = kGamgFirstFrom;
+  bool gamgNeedsSeveralProcesses = true;
+  double gamgSlowestRate = kGamgSlowestRate;  // decades of residual per Krylov iteration
+};
 static_assert(kIterativeBreakEven == kMemoryBoundSystemFrom,
               "linear_solver.hpp: memory-bound sizes start where the direct solvers end");
 
@@ -84,6 +108,7 @@ class TangentSolver {
   void setForcing(double relativeTolerance) { forcing_ = relativeTolerance; }
   // Krylov iterations after which a solve counts as stalled (default: the backend's).
   void setKrylovIterationLimit(int iterations) { iterationLimit_ = iterations; }
+  void setAutoPreconditionerRule(const AutoPreconditionerRule& rule) { autoRule_ = rule; }
   // Whether CHOLMOD's and UMFPACK's factors are reused for later tangents (default yes).
   void setFactorReuse(bool reuse) { reuseFactors_ = reuse; }
   // Receives one line for every choice and fallback (printed and logged by the command).
@@ -121,11 +146,22 @@ class TangentSolver {
   bool canReuseFactor(const SystemMatrices& system) const;
   void recordFactor();
   Eigen::VectorXd solveWithReusedFactor(const Eigen::VectorXd& rhs);
+  void setKrylovLimits();
+  void attachPetsc(PetscMethod method);
+  bool onGamgProbation() const { return gamgProbation_ && active_ == petsc_.solver.get(); }
+  Eigen::VectorXd leaveGamg(const Eigen::VectorXd& rhs, const KrylovFailure& failure);
 
   LinearSolverSpec::Method method_ = LinearSolverSpec::Method::Cholmod;
   Backend symmetric_;
   Backend general_;
   Backend petsc_;  // created on first use
+  // auto's GAMG (AutoPreconditionerRule): on probation until a solve with a new hierarchy
+  // converges slower than the rule's rate, then replaced by BoomerAMG for the rest of the run.
+  // freshHierarchy_: the last factorization built its hierarchy (a kept one may be stale).
+  AutoPreconditionerRule autoRule_;
+  bool gamgProbation_ = false;
+  bool freshHierarchy_ = false;
+  LinearSolverStatistics retiredStatistics_;  // of the GAMG backend replaced
   // MUMPS as a direct solver (created on first use): on several processes for every direct
   // solve; on one, for large unsymmetric systems under auto (kUnsymmetricMumpsBreakEven).
   Backend mumpsDirect_;

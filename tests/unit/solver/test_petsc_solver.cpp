@@ -246,6 +246,118 @@ TEST(PetscSolver, AutoSolvesLargeSystemsWithBoomerAmgOnNodeBlocks) {
   EXPECT_EQ(automatic.statistics().krylovFallbacks, 0);
 }
 
+// On several processes from kGamgFirstFrom equations auto starts with GAMG (faster there on
+// thin models) and holds each new GAMG hierarchy to a convergence rate (the bulk die, where
+// GAMG stalls). The rule moved here so that one process and a lattice of 50 k equations show it.
+AutoPreconditionerRule gamgFromTheStart(double slowestRate) {
+  AutoPreconditionerRule rule;
+  rule.gamgFrom = 0;
+  rule.gamgNeedsSeveralProcesses = false;
+  rule.gamgSlowestRate = slowestRate;
+  return rule;
+}
+
+TEST(PetscSolver, AutoKeepsGamgWhileANewHierarchyConvergesFastEnough) {
+  const Lattice model = lattice(26);  // 50 700 equations
+  const Eigen::VectorXd rhs = rightHandSide(model.system.free.rows());
+  TangentSolver automatic(LinearSolverSpec::Method::Auto);
+  std::vector<std::string> notes;
+  automatic.setNotifier([&](const std::string& line) { notes.push_back(line); });
+  automatic.setAutoPreconditionerRule(gamgFromTheStart(kGamgSlowestRate));
+  automatic.setLayout(model.layout);
+  automatic.setForcing(1e-8);
+  automatic.factorize(model.system);
+  EXPECT_EQ(automatic.activeBackend(), "GMRES+GAMG");
+  EXPECT_NE(automatic.choice().find("GAMG from 0, BoomerAMG once a new GAMG hierarchy converges "
+                                    "slower than 0.07 decades per Krylov iteration"),
+            std::string::npos)
+      << automatic.choice();
+  Eigen::VectorXd x = automatic.solve(rhs);
+  EXPECT_LE((model.system.free * x - rhs).norm() / rhs.norm(), 1e-8);
+  // Fast enough: 8 decades within 8 / 0.07 = 115 iterations.
+  EXPECT_LE(automatic.statistics().krylovIterations, 115);
+  // A kept hierarchy is not held to the rate (it may be stale; a stall rebuilds it): even an
+  // impossible rate leaves GAMG in place.
+  automatic.setAutoPreconditionerRule(gamgFromTheStart(5.0));
+  automatic.factorize(model.system);
+  EXPECT_EQ(automatic.statistics().reusedPreconditioners, 1);
+  x = automatic.solve(rhs);
+  EXPECT_LE((model.system.free * x - rhs).norm() / rhs.norm(), 1e-8);
+  EXPECT_EQ(automatic.activeBackend(), "GMRES+GAMG");
+  EXPECT_EQ(notes.size(), 1u);  // the choice only
+}
+
+TEST(PetscSolver, AutoReplacesGamgWithBoomerAmgWhenANewHierarchyConvergesTooSlowly) {
+  const Lattice model = lattice(26);
+  const Eigen::VectorXd rhs = rightHandSide(model.system.free.rows());
+  TangentSolver automatic(LinearSolverSpec::Method::Auto);
+  std::vector<std::string> notes;
+  automatic.setNotifier([&](const std::string& line) { notes.push_back(line); });
+  // 5 decades per iteration: 8 decades allow ceil(8 / 5) = 2 GAMG iterations, too few.
+  automatic.setAutoPreconditionerRule(gamgFromTheStart(5.0));
+  automatic.setLayout(model.layout);
+  automatic.setForcing(1e-8);
+  automatic.factorize(model.system);
+  EXPECT_EQ(automatic.activeBackend(), "GMRES+GAMG");
+  Eigen::VectorXd x = automatic.solve(rhs);
+  EXPECT_LE((model.system.free * x - rhs).norm() / rhs.norm(), 1e-8);
+  EXPECT_EQ(automatic.activeBackend(), "GMRES+BoomerAMG");
+  ASSERT_EQ(notes.size(), 3u);
+  EXPECT_NE(notes[1].find("GMRES+GAMG: DIVERGED_ITS after 2 iterations"), std::string::npos)
+      << notes[1];
+  EXPECT_NE(notes[1].find("slower than 5 decades per Krylov iteration with a new hierarchy; "
+                          "GMRES+BoomerAMG solves this iteration and the rest of the run"),
+            std::string::npos)
+      << notes[1];
+  // The choice again, as the results file's summary keeps it.
+  EXPECT_EQ(notes[2], "linear solver: " + automatic.choice());
+  EXPECT_NE(notes[2].find("; GMRES+BoomerAMG from Krylov solve 1 on, GAMG too slow"),
+            std::string::npos)
+      << notes[2];
+  LinearSolverStatistics statistics = automatic.statistics();
+  EXPECT_EQ(statistics.krylovFallbacks, 0);  // no direct solve
+  EXPECT_EQ(statistics.solves, 2);           // GAMG's two iterations are counted
+  EXPECT_EQ(statistics.factorizations, 2);
+  // BoomerAMG stays, at no rate: the next tangent is BoomerAMG's without a word.
+  automatic.factorize(model.system);
+  x = automatic.solve(rhs);
+  EXPECT_LE((model.system.free * x - rhs).norm() / rhs.norm(), 1e-8);
+  EXPECT_EQ(automatic.activeBackend(), "GMRES+BoomerAMG");
+  EXPECT_EQ(notes.size(), 3u);
+}
+
+TEST(PetscSolver, AutoGoesFromAStaleGamgHierarchyToANewOneToBoomerAmgToTheDirectSolver) {
+  const Lattice model = lattice(26);
+  const Eigen::VectorXd rhs = rightHandSide(model.system.free.rows());
+  TangentSolver automatic(LinearSolverSpec::Method::Auto);
+  std::vector<std::string> notes;
+  automatic.setNotifier([&](const std::string& line) { notes.push_back(line); });
+  automatic.setAutoPreconditionerRule(gamgFromTheStart(kGamgSlowestRate));
+  automatic.setLayout(model.layout);
+  automatic.setForcing(1e-8);
+  automatic.factorize(model.system);
+  automatic.solve(rhs);  // builds GAMG's hierarchy and passes
+  // Two iterations of any Krylov solve from now on: the kept hierarchy stalls, so does a new
+  // one, then BoomerAMG, and CHOLMOD solves.
+  automatic.setKrylovIterationLimit(2);
+  automatic.factorize(model.system);
+  const Eigen::VectorXd x = automatic.solve(rhs);
+  EXPECT_LE(relativeError(x, directSolution(model.system, rhs)), 1e-10);
+  EXPECT_EQ(automatic.activeBackend(), "CHOLMOD");
+  const LinearSolverStatistics statistics = automatic.statistics();
+  EXPECT_EQ(statistics.krylovFallbacks, 1);
+  EXPECT_EQ(statistics.reusedPreconditioners, 1);  // the stale hierarchy, then a new one
+  ASSERT_EQ(notes.size(), 4u);
+  EXPECT_NE(notes[1].find("GMRES+GAMG: DIVERGED_ITS after 2 iterations"), std::string::npos)
+      << notes[1];
+  // GAMG's solves: the first, the stale hierarchy's and the new one's.
+  EXPECT_NE(notes[2].find("GMRES+BoomerAMG from Krylov solve 3 on"), std::string::npos) << notes[2];
+  EXPECT_NE(notes[3].find("GMRES+BoomerAMG: DIVERGED_ITS after 2 iterations"), std::string::npos)
+      << notes[3];
+  EXPECT_NE(notes[3].find("solving this iteration with CHOLMOD/MUMPS"), std::string::npos)
+      << notes[3];
+}
+
 TEST(PetscSolver, AutoFactorizesLargeUnsymmetricSystemsWithMumps) {
   // 17^3 nodes: 13 872 equations, above kUnsymmetricMumpsBreakEven; the skew makes the system
   // unsymmetric like a sliding contact tangent. The solution must be UMFPACK's to round-off.
