@@ -271,8 +271,9 @@ Eigen::VectorXd TangentSolver::solveWithReusedFactor(const Eigen::VectorXd& rhs)
 void TangentSolver::setKrylovLimits() {
   active_->setRelativeTolerance(forcing_);
   int limit = iterationLimit_ > 0 ? iterationLimit_ : kKrylovIterationLimit;
-  if (iterationLimit_ == 0 && onGamgProbation() && freshHierarchy_) {
-    // The iterations a solve at the rule's slowest rate needs to reach the tolerance.
+  if (iterationLimit_ == 0 && onGamgProbation()) {
+    // The iterations a solve at the rule's slowest rate needs to reach the tolerance (with a
+    // kept hierarchy too: one that misses it is rebuilt, by leaveGamg, before it is judged).
     const double decades = std::max(1.0, -std::log10(forcing_));
     limit = std::min(limit, static_cast<int>(std::ceil(decades / autoRule_.gamgSlowestRate)));
   }

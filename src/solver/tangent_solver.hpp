@@ -40,23 +40,25 @@ namespace cc {
 // not GAMG: one process, thin, 0.5-0.8 times GAMG's CPU per system up to 342 k equations; on
 // the bulk die (bulk_79k.deck) BoomerAMG 91.3 s and 42 iterations, GAMG 1038 s, 102 iterations
 // and a cut-back; on two processes 36.0 against 39.8 s (thin) and 63.8 s against 703.5 s with
-// six stalled Krylov solves (bulk). The price: two processes on thin models from a few hundred
-// thousand equations, where GAMG is faster (388 k: 366 against 305 s; 1.13 M: 21.9 against
-// 16.8 min; thirtieth session, with the tangent through PETSc's COO interface, 1.13 M: 18.4
-// against 13.1 min). Every paper and regression deck is far below the break-even (at most ~20 k).
+// six stalled Krylov solves (bulk). Two processes on thin models from a few hundred thousand
+// equations, where GAMG is faster, start with GAMG instead (kGamgFirstFrom). Every paper and
+// regression deck is far below the break-even (at most ~20 k).
 inline constexpr Eigen::Index kIterativeBreakEven = 50000;
 
 // Free equations from which `solver=auto` on several processes starts with GMRES + GAMG instead
 // of BoomerAMG, and the slowest convergence it accepts from GAMG: a solve with a new GAMG
 // hierarchy that has not reached its tolerance after log10(1 / tolerance) / kGamgSlowestRate
-// Krylov iterations is redone with BoomerAMG, which serves the rest of the run. Thin scaling
+// Krylov iterations is redone with BoomerAMG, which serves the rest of the run (a solve with a
+// kept hierarchy that misses the allowance is repeated with a new one first). Thin scaling
 // decks on two processes (thirty-fourth session, `--threads 1`, whole runs): 125 k BoomerAMG
 // 62.7 s against GAMG 68.9 s; 388 k (twenty-ninth session) 365.9 against 304.6 s; 1.13 M 18.4-19.3
 // against 13.1 min. GAMG's rate there: 0.13-0.47 decades per iteration in every solve of the
-// 125 k deck. On the bulk die (bulk_79k.deck) it was 0.04-0.10, with 0.059 in the first solve,
-// against BoomerAMG's 0.3-0.4; GAMG then stalled in the first drag step, where BoomerAMG is 11
-// times faster over the run. One process: BoomerAMG was the faster on thin decks at every size
-// measured (to 1.13 M), so it starts there.
+// 125 k deck. On the bulk die (bulk_79k.deck) it was 0.04-0.10 from the first solve (0.059),
+// against BoomerAMG's 0.3-0.4, and GAMG stalled in the first drag step (the whole run on two
+// processes: 703.5 s against BoomerAMG's 63.8 s). On the bulk 341 k die the switch came in the
+// first solve and cost 5 % of the run (207.7 s against 197.4 s with BoomerAMG throughout). One
+// process: BoomerAMG was the faster on thin decks at every size measured (to 1.13 M), so it
+// starts there.
 inline constexpr Eigen::Index kGamgFirstFrom = 250000;
 inline constexpr double kGamgSlowestRate = 0.07;
 
@@ -157,7 +159,8 @@ class TangentSolver {
   Backend petsc_;  // created on first use
   // auto's GAMG (AutoPreconditionerRule): on probation until a solve with a new hierarchy
   // converges slower than the rule's rate, then replaced by BoomerAMG for the rest of the run.
-  // freshHierarchy_: the last factorization built its hierarchy (a kept one may be stale).
+  // freshHierarchy_: the last factorization built its hierarchy (a kept one that misses the
+  // rate may only be stale: it is rebuilt and the solve repeated first).
   AutoPreconditionerRule autoRule_;
   bool gamgProbation_ = false;
   bool freshHierarchy_ = false;
