@@ -278,6 +278,7 @@ void TangentSolver::setKrylovLimits() {
     limit = std::min(limit, static_cast<int>(std::ceil(decades / autoRule_.gamgSlowestRate)));
   }
   active_->setIterationLimit(limit);
+  krylovLimit_ = limit;
 }
 
 Eigen::VectorXd TangentSolver::solve(const Eigen::VectorXd& rhs) {
@@ -319,9 +320,10 @@ Eigen::VectorXd TangentSolver::leaveGamg(const Eigen::VectorXd& rhs, const Krylo
   }
   if (notify_) {
     notify_(
-        fmt::format("{}: slower than {} decades per Krylov iteration with a new hierarchy; "
-                    "GMRES+BoomerAMG solves this iteration and the rest of the run",
-                    failure.what(), autoRule_.gamgSlowestRate));
+        fmt::format("{}: a new GAMG hierarchy missed its allowance of {} iterations ({} "
+                    "decades per iteration); GMRES+BoomerAMG solves this iteration and the rest "
+                    "of the run",
+                    failure.what(), krylovLimit_, autoRule_.gamgSlowestRate));
   }
   retiredStatistics_ += petsc_.solver->statistics();
   // The run's record of the choice (printed, and the results file's summary) says so too.

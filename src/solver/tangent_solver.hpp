@@ -164,6 +164,7 @@ class TangentSolver {
   AutoPreconditionerRule autoRule_;
   bool gamgProbation_ = false;
   bool freshHierarchy_ = false;
+  int krylovLimit_ = 0;                       // the iteration limit of the last iterative solve
   LinearSolverStatistics retiredStatistics_;  // of the GAMG backend replaced
   // MUMPS as a direct solver (created on first use): on several processes for every direct
   // solve; on one, for large unsymmetric systems under auto (kUnsymmetricMumpsBreakEven).
