@@ -55,8 +55,9 @@ inline constexpr Eigen::Index kIterativeBreakEven = 50000;
 // against 13.1 min. GAMG's rate there: 0.13-0.47 decades per iteration in every solve of the
 // 125 k deck. On the bulk die (bulk_79k.deck) it was 0.04-0.10 from the first solve (0.059),
 // against BoomerAMG's 0.3-0.4, and GAMG stalled in the first drag step (the whole run on two
-// processes: 703.5 s against BoomerAMG's 63.8 s). On the bulk 341 k die the switch came in the
-// first solve and cost 5 % of the run (207.7 s against 197.4 s with BoomerAMG throughout). One
+// processes: 703.5 s against BoomerAMG's 63.8 s). On the bulk die the switch came in the first
+// solve and cost one GAMG set-up and 43 iterations: 5 % of the run at 341 k (207.7 s against
+// 197.4 s with BoomerAMG throughout), 48 s at 1.2 M (938.3 against 890.1 s back to back). One
 // process: BoomerAMG was the faster on thin decks at every size measured (to 1.13 M), so it
 // starts there.
 inline constexpr Eigen::Index kGamgFirstFrom = 250000;
