@@ -257,16 +257,26 @@ AutoPreconditionerRule gamgFromTheStart(double slowestRate) {
   return rule;
 }
 
-TEST(PetscSolver, AutoKeepsGamgWhileANewHierarchyConvergesFastEnough) {
-  const Lattice model = lattice(26);  // 50 700 equations
-  const Eigen::VectorXd rhs = rightHandSide(model.system.free.rows());
-  TangentSolver automatic(LinearSolverSpec::Method::Auto);
+// auto with that rule on a lattice of 50 700 equations, forcing 1e-8, its first tangent
+// factorized; `notes` collects what the solver says.
+struct AutoOnALattice {
+  Lattice model = lattice(26);
+  Eigen::VectorXd rhs = rightHandSide(model.system.free.rows());
+  TangentSolver automatic{LinearSolverSpec::Method::Auto};
   std::vector<std::string> notes;
-  automatic.setNotifier([&](const std::string& line) { notes.push_back(line); });
-  automatic.setAutoPreconditionerRule(gamgFromTheStart(kGamgSlowestRate));
-  automatic.setLayout(model.layout);
-  automatic.setForcing(1e-8);
-  automatic.factorize(model.system);
+
+  explicit AutoOnALattice(double slowestRate) {
+    automatic.setNotifier([this](const std::string& line) { notes.push_back(line); });
+    automatic.setAutoPreconditionerRule(gamgFromTheStart(slowestRate));
+    automatic.setLayout(model.layout);
+    automatic.setForcing(1e-8);
+    automatic.factorize(model.system);
+  }
+};
+
+TEST(PetscSolver, AutoKeepsGamgWhileANewHierarchyConvergesFastEnough) {
+  AutoOnALattice run(kGamgSlowestRate);
+  auto& [model, rhs, automatic, notes] = run;
   EXPECT_EQ(automatic.activeBackend(), "GMRES+GAMG");
   EXPECT_NE(automatic.choice().find("GAMG from 0, BoomerAMG once a new GAMG hierarchy converges "
                                     "slower than 0.07 decades per Krylov iteration"),
@@ -287,16 +297,9 @@ TEST(PetscSolver, AutoKeepsGamgWhileANewHierarchyConvergesFastEnough) {
 }
 
 TEST(PetscSolver, AutoReplacesGamgWithBoomerAmgWhenANewHierarchyConvergesTooSlowly) {
-  const Lattice model = lattice(26);
-  const Eigen::VectorXd rhs = rightHandSide(model.system.free.rows());
-  TangentSolver automatic(LinearSolverSpec::Method::Auto);
-  std::vector<std::string> notes;
-  automatic.setNotifier([&](const std::string& line) { notes.push_back(line); });
   // 5 decades per iteration: 8 decades allow ceil(8 / 5) = 2 GAMG iterations, too few.
-  automatic.setAutoPreconditionerRule(gamgFromTheStart(5.0));
-  automatic.setLayout(model.layout);
-  automatic.setForcing(1e-8);
-  automatic.factorize(model.system);
+  AutoOnALattice run(5.0);
+  auto& [model, rhs, automatic, notes] = run;
   EXPECT_EQ(automatic.activeBackend(), "GMRES+GAMG");
   Eigen::VectorXd x = automatic.solve(rhs);
   EXPECT_LE((model.system.free * x - rhs).norm() / rhs.norm(), 1e-8);
@@ -327,15 +330,8 @@ TEST(PetscSolver, AutoReplacesGamgWithBoomerAmgWhenANewHierarchyConvergesTooSlow
 }
 
 TEST(PetscSolver, AutoGoesFromAStaleGamgHierarchyToANewOneToBoomerAmgToTheDirectSolver) {
-  const Lattice model = lattice(26);
-  const Eigen::VectorXd rhs = rightHandSide(model.system.free.rows());
-  TangentSolver automatic(LinearSolverSpec::Method::Auto);
-  std::vector<std::string> notes;
-  automatic.setNotifier([&](const std::string& line) { notes.push_back(line); });
-  automatic.setAutoPreconditionerRule(gamgFromTheStart(kGamgSlowestRate));
-  automatic.setLayout(model.layout);
-  automatic.setForcing(1e-8);
-  automatic.factorize(model.system);
+  AutoOnALattice run(kGamgSlowestRate);
+  auto& [model, rhs, automatic, notes] = run;
   automatic.solve(rhs);  // builds GAMG's hierarchy and passes
   // Two iterations of any Krylov solve from now on: the kept hierarchy stalls, so does a new
   // one, then BoomerAMG, and CHOLMOD solves.
