@@ -44,6 +44,8 @@ namespace cc {
 // equations, where GAMG is faster, start with GAMG instead (kGamgFirstFrom). Every paper and
 // regression deck is far below the break-even (at most ~20 k).
 inline constexpr Eigen::Index kIterativeBreakEven = 50000;
+static_assert(kIterativeBreakEven == kMemoryBoundSystemFrom,
+              "linear_solver.hpp: memory-bound sizes start where the direct solvers end");
 
 // Free equations from which `solver=auto` on several processes starts with GMRES + GAMG instead
 // of BoomerAMG, and the slowest convergence it accepts from GAMG: a solve with a new GAMG
@@ -70,8 +72,6 @@ struct AutoPreconditionerRule {
   bool gamgNeedsSeveralProcesses = true;
   double gamgSlowestRate = kGamgSlowestRate;  // decades of residual per Krylov iteration
 };
-static_assert(kIterativeBreakEven == kMemoryBoundSystemFrom,
-              "linear_solver.hpp: memory-bound sizes start where the direct solvers end");
 
 // Free equations from which `solver=auto` factorizes unsymmetric systems (friction) with MUMPS
 // (PETSc, one process) instead of UMFPACK. The whole scaling runs, one thread, the two solvers
