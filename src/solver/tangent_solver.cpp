@@ -334,7 +334,6 @@ Eigen::VectorXd TangentSolver::leaveGamg(const Eigen::VectorXd& rhs, const Krylo
   active_ = nullptr;
   attachPetsc(PetscMethod::BoomerAmg);
   factorizeWith(petsc_, *system_);
-  freshHierarchy_ = true;
   return solve(rhs);
 }
 

@@ -7,10 +7,13 @@
 // A share that gains a nonzero in a row of another process only after the pattern was analyzed,
 // in rows not coupled to its own (a contact item with no node there), must still count.
 // The mesh partition repeats exactly: with PT-Scotch it changed from call to call, and with it
-// every iteration count of an AMG-preconditioned run.
+// every iteration count of an AMG-preconditioned run. solver=auto's GAMG probation ends in the
+// same solve, with the same notes, on every process.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -32,12 +35,12 @@ using test::relativeError;
 constexpr int kSide = 6;  // 6 x 6 x 6 nodes, 540 equations
 constexpr double kKrylovTolerance = 1e-9;
 
-// Slabs of x: process p owns the nodes with i * processes / kSide == p.
-std::vector<int> slabOwners(int processes) {
-  std::vector<int> owner(kSide * kSide * kSide);
-  for (int k = 0; k < kSide; ++k)
-    for (int j = 0; j < kSide; ++j)
-      for (int i = 0; i < kSide; ++i) owner[latticeNode(kSide, i, j, k)] = i * processes / kSide;
+// Slabs of x: process p owns the nodes with i * processes / side == p.
+std::vector<int> slabOwners(int processes, int side = kSide) {
+  std::vector<int> owner(static_cast<std::size_t>(side * side * side));
+  for (int k = 0; k < side; ++k)
+    for (int j = 0; j < side; ++j)
+      for (int i = 0; i < side; ++i) owner[latticeNode(side, i, j, k)] = i * processes / side;
   return owner;
 }
 
@@ -180,6 +183,100 @@ TEST(DistributedPetsc, TheMeshPartitionIsBalancedAndTheSameInEveryCall) {
   for (std::size_t v = 0; v < owners.size(); ++v) ASSERT_EQ(summed[v], parts * owners[v]);
   for (int call = 1; call < 6; ++call)
     EXPECT_EQ(processGroup().partition(offsets, adjacency), first) << "call " << call;
+}
+
+// solver=auto on several processes (tangent_solver.hpp, AutoPreconditionerRule) starts with
+// GAMG and replaces it by BoomerAMG when a new hierarchy misses its allowance of Krylov
+// iterations. The decision reads PETSc's global iteration count, so every process must switch
+// in the same solve and say the same. The rule's threshold moved from 250 000 to 0 equations so
+// that a lattice of 50 700 equations (above kIterativeBreakEven) shows it.
+struct AutoOnAShare {
+  static constexpr int kAutoSide = 26;
+  Lattice whole = lattice(kAutoSide);
+  Eigen::VectorXd rhs = test::rightHandSide(whole.system.free.rows());
+  TangentSolver automatic{LinearSolverSpec::Method::Auto};
+  std::vector<std::string> notes;
+
+  explicit AutoOnAShare(double slowestRate) {
+    const int rank = processGroup().rank();
+    const std::vector<int> owner = slabOwners(processGroup().size(), kAutoSide);
+    LatticeOptions options;
+    options.weight = [&owner, rank](int a, int) { return owner[a] == rank ? 1.0 : 0.0; };
+    share = lattice(kAutoSide, options);
+    share.layout.nodeOwner = owner;
+    automatic.setNotifier([this](const std::string& line) { notes.push_back(line); });
+    AutoPreconditionerRule rule;
+    rule.gamgFrom = 0;
+    rule.gamgSlowestRate = slowestRate;
+    automatic.setAutoPreconditionerRule(rule);
+    automatic.setLayout(share.layout);
+    automatic.setForcing(1e-8);
+    automatic.factorize(share.system);
+  }
+  double residual(const Eigen::VectorXd& x) const {
+    return (whole.system.free * x - rhs).norm() / rhs.norm();
+  }
+  Lattice share;
+};
+
+// Whether every process holds the same lines (a hash of each, summed over the processes).
+bool sameOnEveryProcess(const std::vector<std::string>& lines) {
+  std::vector<double> hashes{static_cast<double>(lines.size())};
+  for (const std::string& line : lines) {
+    hashes.push_back(static_cast<double>(std::hash<std::string>{}(line) % (1ull << 40)));
+  }
+  std::vector<double> summed = hashes;
+  const int processes = processGroup().size();
+  if (processGroup().maximum(static_cast<int>(lines.size())) != static_cast<int>(lines.size())) {
+    return false;
+  }
+  processGroup().sum(summed.data(), summed.size());
+  for (std::size_t k = 0; k < hashes.size(); ++k) {
+    if (summed[k] != processes * hashes[k]) return false;
+  }
+  return true;
+}
+
+TEST(DistributedPetsc, AutoKeepsGamgOnEveryProcessWhileItConvergesFastEnough) {
+  AutoOnAShare run(kGamgSlowestRate);
+  EXPECT_EQ(run.automatic.activeBackend(), "GMRES+GAMG");
+  EXPECT_NE(run.automatic.choice().find("on several processes"), std::string::npos)
+      << run.automatic.choice();
+  EXPECT_LE(run.residual(run.automatic.solve(run.rhs)), 1e-8);
+  run.automatic.factorize(run.share.system);  // a kept hierarchy, held to the same allowance
+  EXPECT_LE(run.residual(run.automatic.solve(run.rhs)), 1e-8);
+  EXPECT_EQ(run.automatic.activeBackend(), "GMRES+GAMG");
+  EXPECT_EQ(run.automatic.statistics().reusedPreconditioners, 1);
+  EXPECT_EQ(run.notes.size(), 1u) << run.notes.back();  // the choice only
+  EXPECT_TRUE(sameOnEveryProcess(run.notes));
+}
+
+TEST(DistributedPetsc, AutoReplacesGamgWithBoomerAmgInTheSameSolveOnEveryProcess) {
+  // 5 decades per iteration: 8 decades allow 2 GAMG iterations, too few.
+  AutoOnAShare run(5.0);
+  const Eigen::VectorXd x = run.automatic.solve(run.rhs);
+  EXPECT_LE(run.residual(x), 1e-8);
+  EXPECT_EQ(run.automatic.activeBackend(), "GMRES+BoomerAMG");
+  ASSERT_EQ(run.notes.size(), 3u);
+  EXPECT_NE(run.notes[1].find("a new GAMG hierarchy missed its allowance of 2 iterations"),
+            std::string::npos)
+      << run.notes[1];
+  EXPECT_NE(run.notes[2].find("; GMRES+BoomerAMG from Krylov solve 1 on, GAMG too slow"),
+            std::string::npos)
+      << run.notes[2];
+  EXPECT_TRUE(sameOnEveryProcess(run.notes));
+  // The processes hold the same solution (PETSc gathers it), and MUMPS was not needed.
+  std::vector<double> summed(x.data(), x.data() + x.size());
+  processGroup().sum(summed.data(), summed.size());
+  for (Eigen::Index k = 0; k < x.size(); ++k) {
+    ASSERT_EQ(summed[static_cast<std::size_t>(k)], processGroup().size() * x[k]) << "entry " << k;
+  }
+  EXPECT_EQ(run.automatic.statistics().krylovFallbacks, 0);
+  // BoomerAMG stays for the next tangent, on every process, without a word.
+  run.automatic.factorize(run.share.system);
+  EXPECT_LE(run.residual(run.automatic.solve(run.rhs)), 1e-8);
+  EXPECT_EQ(run.automatic.activeBackend(), "GMRES+BoomerAMG");
+  EXPECT_EQ(run.notes.size(), 3u);
 }
 
 TEST(DistributedPetsc, RunsOnSeveralProcesses) {
