@@ -138,17 +138,20 @@ def large_lines(family, records):
     lines = []
     for size, _, limit in LARGE[family]:
         r = records.get(size, {})
-        label = f"{family} {size}, 2 processes, solver=auto, <= {limit // 60} min in 24 GiB"
+        label = (f"{family} {size.removeprefix(family)}, 2 processes, solver=auto, "
+                 f"<= {limit // 60} min in 24 GiB")
         if "cpu_s" not in r or r.get("exit_code"):
             lines.append(f"| {label} | failed or timed out: "
                          f"{str(r.get('stderr', r.get('timed_out', '')))[-200:]} | **missed** |")
             continue
         memory = sum(r["peak_rss_mib"])
-        notes = "; ".join(note.split(": ")[-1][:80] for note in r.get("solver_notes", [])[:1])
+        # auto's switch from GAMG to BoomerAMG: the solve that decided it.
+        notes = "; ".join(note.split(": a new GAMG")[0] + " -> BoomerAMG"
+                          for note in r.get("solver_notes", [])[:1])
         met = r["wall_s"] <= limit and memory <= MEMORY_LIMIT_MIB
         lines.append(f"| {label} | **{r['wall_s']:.1f} s = {r['wall_s'] / 60:.1f} min**, "
                      f"{r['equations']} equations, {r['iterations']} Newton its, "
-                     f"{memory / 1024:.1f} GiB in all; {notes or 'no solver switch'}; "
+                     f"{memory / 1024:.1f} GiB in all; {notes or 'no switch of preconditioner'}; "
                      f"{load_of(r)} | {verdict(met)} |")
         if size.endswith("1.2M"):
             outside = 1 - max(r["linear_solve_s"]) / r["wall_s"]
