@@ -240,7 +240,14 @@ void TangentSolver::factorize(const SystemMatrices& system) {
   if (size_ == 0) return;  // everything prescribed: nothing to solve
   if (usesPetsc(size_)) {
     const int kept = petsc_.solver->statistics().reusedPreconditioners;
-    factorizeWith(petsc_, system);
+    try {
+      factorizeWith(petsc_, system);
+    } catch (const StepFailure& failure) {
+      if (failure.kind() != FailureKind::SingularSystem || !petsc_.solver->iterative()) throw;
+      setUpFailed(failure);
+      recordFactor();
+      return;
+    }
     freshHierarchy_ = petsc_.solver->statistics().reusedPreconditioners == kept;
   } else {
     factorizeDirect(system);
@@ -325,16 +332,42 @@ Eigen::VectorXd TangentSolver::leaveGamg(const Eigen::VectorXd& rhs, const Krylo
                     "of the run",
                     failure.what(), krylovLimit_, autoRule_.gamgSlowestRate));
   }
+  replaceGamgWithBoomerAmg("GAMG too slow");
+  factorizeWith(petsc_, *system_);
+  return solve(rhs);
+}
+
+void TangentSolver::replaceGamgWithBoomerAmg(const std::string& why) {
   retiredStatistics_ += petsc_.solver->statistics();
   // The run's record of the choice (printed, and the results file's summary) says so too.
-  choice_ += fmt::format("; GMRES+BoomerAMG from Krylov solve {} on, GAMG too slow",
-                         retiredStatistics_.solves);
+  choice_ +=
+      fmt::format("; GMRES+BoomerAMG from Krylov solve {} on, {}", retiredStatistics_.solves, why);
   if (notify_) notify_("linear solver: " + choice_);
   gamgProbation_ = false;
   active_ = nullptr;
   attachPetsc(PetscMethod::BoomerAmg);
-  factorizeWith(petsc_, *system_);
-  return solve(rhs);
+}
+
+void TangentSolver::setUpFailed(const StepFailure& failure) {
+  // An AMG set-up can fail on a regular tangent: with PETSc 3.18, GAMG with SOR smoothers on
+  // two processes fails in every set-up (SUBPC_ERROR) of the 11 k scaling deck, which MUMPS
+  // solves. So a direct solver decides for this iteration, and says "singular" itself if the
+  // tangent is; auto's GAMG on probation gives way to BoomerAMG for the rest of the run.
+  active_ = nullptr;
+  if (onGamgProbationNow()) {
+    if (notify_) {
+      notify_(fmt::format("{}; GMRES+BoomerAMG solves this iteration and the rest of the run",
+                          failure.what()));
+    }
+    replaceGamgWithBoomerAmg("GAMG's set-up failed");
+    factorizeWith(petsc_, *system_);
+    return;
+  }
+  ++krylovFallbacks_;
+  if (notify_) {
+    notify_(fmt::format("{}; solving this iteration with {}", failure.what(), directSolvers()));
+  }
+  factorizeDirect(*system_);
 }
 
 LinearSolverStatistics TangentSolver::statistics() const {

@@ -5,8 +5,8 @@
 // MUMPS instead). `solver=auto` uses the direct pair below kIterativeBreakEven free
 // equations and GMRES + BoomerAMG (PETSc, hypre) above it; on several processes from
 // kGamgFirstFrom it starts with GMRES + GAMG and keeps it while GAMG converges fast enough
-// (AutoPreconditionerRule). An iterative solve that stalls or diverges is redone with the
-// direct pair for that iteration, and the note says so. Each
+// (AutoPreconditionerRule). An iterative solve that stalls or diverges, or an AMG set-up that
+// fails, is redone with the direct pair for that iteration, and the note says so. Each
 // backend repeats its symbolic analysis only when SystemMatrices::patternVersion changes. On
 // several processes (SystemLayout::nodeOwner given) every system goes to PETSc: MUMPS where the
 // serial direct pair would be used, and for the fallback of a failed Krylov solve.
@@ -152,7 +152,13 @@ class TangentSolver {
   void setKrylovLimits();
   void attachPetsc(PetscMethod method);
   bool onGamgProbation() const { return gamgProbation_ && active_ == petsc_.solver.get(); }
+  // The same while no backend is active (a failed set-up): the PETSc backend is auto's GAMG.
+  bool onGamgProbationNow() const { return gamgProbation_ && petsc_.solver != nullptr; }
   Eigen::VectorXd leaveGamg(const Eigen::VectorXd& rhs, const KrylovFailure& failure);
+  void replaceGamgWithBoomerAmg(const std::string& why);
+  // The iterative PETSc backend's set-up failed with SingularSystem: a direct solver (or, for
+  // auto's GAMG, BoomerAMG) factorizes this tangent instead.
+  void setUpFailed(const StepFailure& failure);
 
   LinearSolverSpec::Method method_ = LinearSolverSpec::Method::Cholmod;
   Backend symmetric_;

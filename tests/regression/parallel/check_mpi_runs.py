@@ -21,6 +21,12 @@
 --case inexact: input/performance/scaling_20k.deck on 2 processes with GMRES + BoomerAMG and
   with MUMPS: Newton iterations per step with the inexact solves at most one more than with the
   direct solver's (issue 13), and the contact force of the last step equal to 1e-6.
+--case setup: input/performance/scaling_11k.deck on 2 processes with GMRES + GAMG whose level
+  smoothers are SOR (PETSC_OPTIONS): with PETSc 3.18 every set-up of that preconditioner fails
+  there (SUBPC_ERROR) on a regular tangent. Each iteration must then be solved by MUMPS and say
+  so, and the run must be the MUMPS run's: the same steps and iterations, forces and
+  displacements to 1e-8 (before, the failure was taken for a singular tangent and the run stopped
+  after its cut-backs with exit 7).
 --case errors: `check` on 2 processes prints the serial output once; a deck error on 2
   processes exits with the serial exit code and is reported once; a persistent inverted element (input/stress/inverted_element_persistent.deck) exits
   with the serial code, keeps the same converged steps and names the element once; SIGKILL of
@@ -409,6 +415,30 @@ def inexact_case(args):
           f"equal to {error:.1e}")
 
 
+def setup_case(args):
+    deck = os.path.join(args.source, "input/performance/scaling_11k.deck")
+    direct = os.path.join(args.scratch, "mumps.h5")
+    run_ok(args, 2, "run", deck, "-o", direct, "--solver", "mumps", "-q")
+    failing = os.path.join(args.scratch, "gamg_sor.h5")
+    environment = dict(os.environ, PETSC_OPTIONS="-cc_gamg_mg_levels_ksp_type richardson "
+                                                 "-cc_gamg_mg_levels_pc_type sor")
+    result = subprocess.run(covcontact(args, 2, "run", deck, "-o", failing, "--solver", "gamg",
+                                       "-q"),
+                            cwd=args.scratch, capture_output=True, text=True, timeout=TIMEOUT_S,
+                            env=environment)
+    check(result.returncode == EXIT["ok"], f"GAMG with SOR: exit {result.returncode}\n"
+                                           f"{result.stdout}\n{result.stderr}")
+    failed = [line for line in result.stderr.splitlines()
+              if "GMRES+GAMG: factorization failed" in line]
+    check(failed, "GAMG with SOR smoothers no longer fails its set-up here: this case tests "
+                  f"nothing, find another trigger\n{result.stderr}")
+    check(all(line.endswith("; solving this iteration with MUMPS") for line in failed),
+          f"a failed set-up without the fallback's note: {failed[0]}")
+    count, worst = compare_steps(direct, failing)
+    print(f"GAMG's set-up failed in {len(failed)} iterations, each solved by MUMPS: {count} steps "
+          f"as the MUMPS run (largest difference {worst:.1e})")
+
+
 def wait_until_unlocked(path, seconds=60):
     """Waits until no process holds the writer's lock on `path`. A process being ended still
     holds its files for a moment after its command line has gone from /proc (the kernel frees
@@ -490,14 +520,14 @@ def main():
     parser.add_argument("--scratch", required=True)
     parser.add_argument("--case", required=True,
                         choices=["crossing", "restart", "errors", "segments", "augmented",
-                                 "predictor", "repeat", "inexact"])
+                                 "predictor", "repeat", "inexact", "setup"])
     args = parser.parse_args()
     shutil.rmtree(args.scratch, ignore_errors=True)
     os.makedirs(args.scratch)
     {"crossing": crossing_case, "restart": restart_case, "errors": errors_case,
      "segments": segments_case, "augmented": augmented_case,
      "predictor": predictor_case, "repeat": repeat_case,
-     "inexact": inexact_case}[args.case](args)
+     "inexact": inexact_case, "setup": setup_case}[args.case](args)
 
 
 if __name__ == "__main__":
