@@ -297,17 +297,12 @@ Eigen::VectorXd TangentSolver::solve(const Eigen::VectorXd& rhs) {
     solution = reusing_ ? solveWithReusedFactor(rhs) : active_->solve(rhs);
   } catch (const KrylovFailure& failure) {
     if (onGamgProbation()) return leaveGamg(rhs, failure);
-    // A Krylov solve that stalled, or a PETSc direct solve that missed: CHOLMOD/UMFPACK (MUMPS
-    // on several processes).
-    ++krylovFallbacks_;
-    if (notify_) {
-      // GAMG stalled on a 3D bulk mesh under a stiff sliding die (341 k equations), where
-      // BoomerAMG needed 5-6 times fewer Krylov iterations and completed (solvers.md).
-      const bool gamg = active_->name().find("GAMG") != std::string::npos;
-      notify_(fmt::format("{}; solving this iteration with {}{}", failure.what(), directSolvers(),
-                          gamg ? " (if GAMG stalls again, try solver=amg)" : ""));
-    }
-    factorizeDirect(*system_);
+    // A Krylov solve that stalled, or a PETSc direct solve that missed. GAMG stalled on a 3D
+    // bulk mesh under a stiff sliding die (341 k equations), where BoomerAMG needed 5-6 times
+    // fewer Krylov iterations and completed (solvers.md).
+    const bool gamg = active_->name().find("GAMG") != std::string::npos;
+    factorizeDirectlyThisIteration(failure.what(),
+                                   gamg ? " (if GAMG stalls again, try solver=amg)" : "");
     solution = active_->solve(rhs);
   }
   if (!solution.allFinite()) {
@@ -354,7 +349,7 @@ void TangentSolver::setUpFailed(const StepFailure& failure) {
   // solves. So a direct solver decides for this iteration, and says "singular" itself if the
   // tangent is; auto's GAMG on probation gives way to BoomerAMG for the rest of the run.
   active_ = nullptr;
-  if (onGamgProbationNow()) {
+  if (gamgProbation_) {
     if (notify_) {
       notify_(fmt::format("{}; GMRES+BoomerAMG solves this iteration and the rest of the run",
                           failure.what()));
@@ -363,9 +358,15 @@ void TangentSolver::setUpFailed(const StepFailure& failure) {
     factorizeWith(petsc_, *system_);
     return;
   }
+  factorizeDirectlyThisIteration(failure.what(), "");
+}
+
+void TangentSolver::factorizeDirectlyThisIteration(const std::string& why,
+                                                   const std::string& advice) {
+  // CHOLMOD/UMFPACK, or MUMPS on several processes.
   ++krylovFallbacks_;
   if (notify_) {
-    notify_(fmt::format("{}; solving this iteration with {}", failure.what(), directSolvers()));
+    notify_(fmt::format("{}; solving this iteration with {}{}", why, directSolvers(), advice));
   }
   factorizeDirect(*system_);
 }

@@ -152,13 +152,14 @@ class TangentSolver {
   void setKrylovLimits();
   void attachPetsc(PetscMethod method);
   bool onGamgProbation() const { return gamgProbation_ && active_ == petsc_.solver.get(); }
-  // The same while no backend is active (a failed set-up): the PETSc backend is auto's GAMG.
-  bool onGamgProbationNow() const { return gamgProbation_ && petsc_.solver != nullptr; }
   Eigen::VectorXd leaveGamg(const Eigen::VectorXd& rhs, const KrylovFailure& failure);
   void replaceGamgWithBoomerAmg(const std::string& why);
   // The iterative PETSc backend's set-up failed with SingularSystem: a direct solver (or, for
   // auto's GAMG, BoomerAMG) factorizes this tangent instead.
   void setUpFailed(const StepFailure& failure);
+  // A failed iterative solve or set-up (`why`): the direct solvers factorize this tangent, and
+  // the note says so (with `advice`).
+  void factorizeDirectlyThisIteration(const std::string& why, const std::string& advice);
 
   LinearSolverSpec::Method method_ = LinearSolverSpec::Method::Cholmod;
   Backend symmetric_;
