@@ -27,6 +27,7 @@ StartState restartFrom(const std::string& file, int fromStep, Model& model) {
   start.stepSize = {point.record.stepFraction, point.record.easySteps};
   start.lastIncrement = std::move(point.record.lastIncrement);
   start.lastDt = point.record.lastDt;
+  model.startEnergyAccount(start.time, start.displacement);
   return start;
 }
 

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <iostream>
 #include <new>
@@ -567,6 +568,16 @@ int runCommand(const RunOptions& options) {
         "completed: {} steps, {} Newton iterations{}, {} cut-backs in {:.2f} s; results in {}\n",
         summary.stepsConverged, summary.totalIterations, discarded, summary.totalCutbacks, seconds,
         path));
+  }
+  if (const EnergyRecord& energy = model->energy(); energy.stabilizationDissipation > 0) {
+    // The stabilisation's forces are not part of the model: how much of the work they took is
+    // what tells whether the answer is still the quasi-static one (Abaqus's ALLSD check).
+    printOut(
+        fmt::format("viscous stabilisation dissipated {:.4g}, {:.3g} % of the work of the "
+                    "loads and supports ({:.4g}); the strain energy is {:.4g}\n",
+                    energy.stabilizationDissipation,
+                    100 * energy.stabilizationDissipation / std::abs(energy.externalWork),
+                    energy.externalWork, energy.strainEnergy));
   }
   if (!cost.empty()) printOut(cost);
   if (group.size() > 1 && !options.quiet) {

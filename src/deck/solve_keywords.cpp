@@ -94,7 +94,14 @@ std::vector<ValueDecl> newtonParameters() {
                       "criterion once the update rule is met. 0: every re-solve converges fully "
                       "(Uzawa per converged step)")
               .withRange(Range::between(0, true, 1, false))
-              .withDefault(defaultText(defaults.augmentedInnerTolerance))};
+              .withDefault(defaultText(defaults.augmentedInnerTolerance)),
+          numberValue("stabilize",
+                      "viscous stabilisation: every solid node carries the force C m (x - x_n) / "
+                      "dt, m its share of the elements' volumes, x_n its place at the last "
+                      "converged step; passes an instability or a body held by contact alone, "
+                      "and the energy balance reports its dissipation. 0: off")
+              .withRange(Range::atLeast(0))
+              .withDefault(defaultText(defaults.stabilization))};
 }
 
 std::vector<ValueDecl> cutbackParameters() {
@@ -148,6 +155,7 @@ void applyNewtonParameters(const ParsedLine& line, NewtonSpec& newton) {
     newton.penaltyContinuation = line.flag("penalty_continuation");
   }
   if (use("aug_inner")) newton.augmentedInnerTolerance = line.number("aug_inner");
+  if (use("stabilize")) newton.stabilization = line.number("stabilize");
 }
 
 // The augmented Lagrangian's re-solves start from a converged state whose contact forces the

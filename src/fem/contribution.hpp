@@ -24,6 +24,9 @@ struct AssemblyState {
   // extrapolating predictor), not the converged state: a rigid surface is then evaluated where
   // it stands at `time`, since the bodies have already moved with it.
   bool extrapolatedStart = false;
+  // Viscous stabilisation factor C (NewtonSpec::stabilization; 0: off): the element sets add
+  // C m (x - x_n) / (time - previousTime) at each node, m its share of the element's volume.
+  double viscousFactor = 0;
 };
 
 struct LocalStatus {

@@ -1,7 +1,10 @@
-// Element sets: per-element evaluation through the ElementKernel interface.
+// Element sets: per-element evaluation through the ElementKernel interface, with the viscous
+// stabilisation's forces when a step asks for them (model/viscous_stabilization.hpp).
 #include "model/element_set.hpp"
 
 #include <fmt/format.h>
+
+#include "model/viscous_stabilization.hpp"
 
 namespace cc {
 
@@ -50,7 +53,15 @@ LocalStatus ElementSet::evaluate(std::size_t item, const AssemblyState& state,
   std::span<double> history(history_.data() + item * historySize_, historySize_);
   const ElementStatus status =
       kernel_->evaluate(reference, current, *material_, history, force, tangent);
-  if (status.ok()) return LocalStatus::success();
+  if (status.ok()) {
+    const double dt = state.time - state.previousTime;
+    if (state.viscousFactor > 0 && dt > 0 && state.previous) {
+      thread_local Eigen::Matrix3Xd previous;
+      gather(item, *state.previous, previous);
+      addViscousForces(reference, current, previous, state.viscousFactor / dt, force, tangent);
+    }
+    return LocalStatus::success();
+  }
   const std::string element = item < gmshTags_.size()
                                   ? fmt::format("gmsh element {}", gmshTags_[item])
                                   : fmt::format("element {}", item);
@@ -70,6 +81,21 @@ Eigen::Matrix<double, 6, Eigen::Dynamic> ElementSet::cauchyStress(
     stress.col(e) = kernel_->cauchyStress(reference, current, *material_, history);
   }
   return stress;
+}
+
+double ElementSet::viscousWork(const Eigen::Matrix3Xd& referenceCoordinates,
+                               const Eigen::Matrix3Xd& currentCoordinates,
+                               const Eigen::Matrix3Xd& previousCoordinates,
+                               double factorPerTime) const {
+  double work = 0.0;
+  Eigen::Matrix3Xd reference, current, previous;
+  for (Eigen::Index e = 0; e < connectivity_.rows(); ++e) {
+    gather(e, referenceCoordinates, reference);
+    gather(e, currentCoordinates, current);
+    gather(e, previousCoordinates, previous);
+    work += cc::viscousWork(reference, current, previous, factorPerTime);
+  }
+  return work;
 }
 
 double ElementSet::strainEnergy(const Eigen::Matrix3Xd& referenceCoordinates,

@@ -49,6 +49,10 @@ class ElementSet : public Contribution {
                                                         const Eigen::Matrix3Xd& current) const;
   // Stored strain energy of the set at configuration x (NaN if the kernel has none).
   double strainEnergy(const Eigen::Matrix3Xd& reference, const Eigen::Matrix3Xd& current) const;
+  // Work of the viscous stabilisation's forces (factor per time C / dt) over the step from
+  // configuration `previous` to `current`, summed over the set.
+  double viscousWork(const Eigen::Matrix3Xd& reference, const Eigen::Matrix3Xd& current,
+                     const Eigen::Matrix3Xd& previous, double factorPerTime) const;
   int elementCount() const { return static_cast<int>(connectivity_.rows()); }
 
  private:

@@ -1,8 +1,8 @@
 // Energy balance of a run (issue 16, part 4). Work of the loads and the support reactions,
 // W_ext = sum over steps of (F_n + F_{n+1}) . (u_{n+1} - u_n) / 2 with F = f_ext + reactions
 // (the trapezoidal rule), against the stored strain energy of the elements, the stored energy of
-// the contact penalty springs and the frictional dissipation:
-//   W_ext = E_strain + E_contact + D  (+ the step-size error of both time integrations).
+// the contact penalty springs, the frictional dissipation and the viscous stabilisation's:
+//   W_ext = E_strain + E_contact + D + D_stab  (+ the step-size error of the time integrations).
 // The trapezoidal rule and the backward-Euler dissipation differ from the exact integrals by
 // O(step^2) per step; sum |(F_{n+1} - F_n) . Delta u| / 2, the difference between the
 // trapezoidal and a one-sided rule, measures that error and is reported with the balance.
@@ -11,6 +11,12 @@
 #include "model/model.hpp"
 
 namespace cc {
+
+void Model::startEnergyAccount(double time, const Eigen::VectorXd& displacement) {
+  energyDisplacement_ = displacement;
+  energyForce_.setZero(displacement.size());
+  energyTime_ = time;
+}
 
 void Model::accountEnergy(double time, const Eigen::VectorXd& displacement,
                           const Eigen::VectorXd& internalForce) {
@@ -42,9 +48,17 @@ void Model::accountEnergy(double time, const Eigen::VectorXd& displacement,
     energy_.dissipation += pair->dissipatedEnergy();
   }
   energyStepLength_ = time - energyTime_;
+  if (viscousFactor_ > 0 && energyStepLength_ > 0) {
+    const Eigen::Matrix3Xd previous =
+        mesh_.coordinates + Eigen::Map<const Eigen::Matrix3Xd>(energyDisplacement_.data(), 3, n);
+    for (const auto& set : elementSets_) {
+      energy_.stabilizationDissipation += set->viscousWork(mesh_.coordinates, current, previous,
+                                                           viscousFactor_ / energyStepLength_);
+    }
+  }
   energy_.dissipationPower = energyStepLength_ > 0 ? stepDissipation / energyStepLength_ : 0.0;
-  energy_.balance =
-      energy_.externalWork - energy_.strainEnergy - energy_.contactEnergy - energy_.dissipation;
+  energy_.balance = energy_.externalWork - energy_.strainEnergy - energy_.contactEnergy -
+                    energy_.dissipation - energy_.stabilizationDissipation;
   energyTime_ = time;
   energyDisplacement_ = displacement;
   energyForce_ = force;

@@ -32,6 +32,7 @@ void Model::externalForces(double t, Eigen::VectorXd& force) const {
 
 void Model::assemble(const AssemblyState& state, Eigen::VectorXd& internalForce,
                      SystemMatrices* tangent) {
+  viscousFactor_ = state.viscousFactor;
   if (!group_) {
     assembler_->assemble(state, internalForce, tangent);
     return;

@@ -89,6 +89,10 @@ class Model : public NonlinearProblem {
   void accountEnergy(double time, const Eigen::VectorXd& displacement,
                      const Eigen::VectorXd& internalForce);
   const EnergyRecord& energy() const { return energy_; }
+  // A run continued with --restart: the sums start at the restart state, not at the unloaded
+  // one. Its forces are not known before the first step, whose work is therefore one-sided
+  // (within that step's quadrature bound).
+  void startEnergyAccount(double time, const Eigen::VectorXd& displacement);
 
   // The record of a converged step (reactions, set sums, stresses and contact as selected).
   // The returned record points into buffers owned by the model, valid until the next call.
@@ -122,6 +126,9 @@ class Model : public NonlinearProblem {
   double energyTime_ = 0;
   double energyStepLength_ = 0;
   Eigen::VectorXd energyDisplacement_, energyForce_;
+  // The viscous stabilisation factor of the last assembly: that of the step being accounted,
+  // whose converged state Newton evaluates last.
+  double viscousFactor_ = 0;
   // Several processes (distribute()): the group, the owner of every node, and per element set
   // whether this process owns each element. group_ is null on one process.
   ProcessGroup* group_ = nullptr;

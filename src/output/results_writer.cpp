@@ -383,6 +383,7 @@ void ResultsWriter::writeEnergy(h5::FileRef file, hid_t stepGroup, const EnergyR
   h5::writeAttribute(file, id, "contact_energy", energy.contactEnergy);
   h5::writeAttribute(file, id, "dissipation", energy.dissipation);
   h5::writeAttribute(file, id, "dissipation_power", energy.dissipationPower);
+  h5::writeAttribute(file, id, "stabilization_dissipation", energy.stabilizationDissipation);
   h5::writeAttribute(file, id, "balance", energy.balance);
   h5::writeAttribute(file, id, "quadrature_bound", energy.quadratureBound);
 }

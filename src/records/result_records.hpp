@@ -56,6 +56,9 @@ struct EnergyRecord {
   double contactEnergy = 0;
   double dissipation = 0;  // since the start
   double dissipationPower = 0;
+  // Work of the viscous stabilisation's forces since the start (NewtonSpec::stabilization;
+  // 0 without it): dissipated, so the balance subtracts it like the friction's.
+  double stabilizationDissipation = 0;
   double balance = 0;
   double quadratureBound = 0;
 };

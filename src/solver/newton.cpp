@@ -139,6 +139,7 @@ void Newton::assembleAt(const Eigen::VectorXd& displacement, const NewtonStep& s
   state.current = &current_;
   state.previous = &previous_;
   state.extrapolatedStart = extrapolatedStart_;
+  state.viscousFactor = viscousFactor_;
   const auto start = Clock::now();
   ++assemblies_;
   problem_.assemble(state, internalForce_, withTangent ? &tangent_ : nullptr);
@@ -264,6 +265,7 @@ NewtonResult Newton::solve(const NewtonStep& step, const NewtonSpec& spec,
                            Eigen::VectorXd& displacement) {
   const DofMap& dofs = problem_.dofMap();
   const Eigen::Matrix3Xd& reference = problem_.referenceCoordinates();
+  viscousFactor_ = spec.stabilization;
   previous_ =
       reference + Eigen::Map<const Eigen::Matrix3Xd>(displacement.data(), 3, reference.cols());
   Eigen::VectorXd prescribedTarget(dofs.numPrescribed());

@@ -184,6 +184,7 @@ class Newton {
   int assemblies_ = 0;
   double assemblySeconds_ = 0;
   bool extrapolatedStart_ = false;  // the next assembly is at an extrapolated first iterate
+  double viscousFactor_ = 0;        // NewtonSpec::stabilization of the step being solved
   struct {
     int step = -1, iteration = -1;
   } tangentCheck_;

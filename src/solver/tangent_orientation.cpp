@@ -56,7 +56,9 @@ std::string TangentOrientationWatch::describe() const {
       "the tangent's determinant changes sign between these iterations ({}): with the contact "
       "states Newton passes through, equilibrium has no locally unique solution here, most "
       "likely a limit point of the frictional problem (a stick/slip instability), which smaller "
-      "steps do not pass",
+      "steps do not pass; viscous stabilisation (`newton stabilize=C`) carries a run through "
+      "it at the price of a dissipation the run reports (continue from the last converged "
+      "step with --restart)",
       list);
 }
 

@@ -182,6 +182,14 @@ struct NewtonSpec {
   // (docs/verification/augmented_lagrangian.md): not the default. Without multipliers (penalty
   // pairs only) it has no effect.
   double augmentedInnerTolerance = 0;
+  // Viscous stabilisation (deck: `newton stabilize=C`; off at 0): every solid node carries the
+  // artificial viscous force C m (x - x_n) / dt, with m its share of the elements' volumes (a
+  // lumped mass of unit density) and x_n its place at the last converged step. It makes the
+  // tangent regular where the quasi-static problem has none (a body held by contact alone
+  // before it touches, a fold of the frictional problem: docs/verification/sliding.md), at
+  // the price of a rate-dependent force whose work the energy balance reports as
+  // `stabilization_dissipation`. The same role as Abaqus's *STATIC, STABILIZE with a factor.
+  double stabilization = 0;
 };
 
 // The linear solver of the Newton systems (deck: `solve solver=...`, issue 13). Auto keeps the

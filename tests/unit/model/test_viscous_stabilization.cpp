@@ -1,0 +1,145 @@
+// Viscous stabilisation (`newton stabilize=C`, model/viscous_stabilization.hpp): the element
+// volumes its lumped masses come from, against closed-form volumes; and whole runs of a cube
+// that nothing supports, which without it has a singular tangent and with it must move so that
+// the viscous forces balance the load (the elastic forces of a free body sum to zero), and
+// whose energy balance must account for the viscous work.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "deck_runner.hpp"
+#include "model/viscous_stabilization.hpp"
+
+namespace cc::test {
+namespace {
+
+// A square frustum: bottom a x a at z = 0, top b x b at z = h, both centred on the z axis, in
+// gmsh's Hex8 order. Its faces are planar, so the trilinear element is the frustum itself.
+Eigen::Matrix<double, 3, 8> frustum(double a, double b, double h) {
+  Eigen::Matrix<double, 3, 8> corners;
+  const double s[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+  for (int k = 0; k < 4; ++k) {
+    corners.col(k) << s[k][0] * a / 2, s[k][1] * a / 2, 0;
+    corners.col(k + 4) << s[k][0] * b / 2, s[k][1] * b / 2, h;
+  }
+  return corners;
+}
+
+TEST(ViscousStabilization, HexahedronVolumeOfAFrustumIsTheClosedForm) {
+  const double a = 2.0, b = 0.5, h = 1.5;
+  EXPECT_NEAR(hexahedronVolume(frustum(a, b, h)), h * (a * a + a * b + b * b) / 3, 1e-14);
+  // A general affine image: the volume scales with the determinant of the linear part.
+  Eigen::Matrix3d linear;
+  linear << 1.2, 0.3, -0.1, 0.2, 0.9, 0.4, -0.3, 0.1, 1.1;
+  const Eigen::Matrix3Xd mapped = linear * frustum(a, b, h);
+  EXPECT_NEAR(hexahedronVolume(mapped), linear.determinant() * h * (a * a + a * b + b * b) / 3,
+              1e-13);
+}
+
+// The solid-shell Hex18 (two Quad9 faces, nodes 0-8 at zeta = -1 and 9-17 at zeta = +1): the
+// corners are 0-3 and 9-12; its edge and face nodes must not enter the volume.
+TEST(ViscousStabilization, HexahedronVolumeOfASolidShell18UsesItsCorners) {
+  const Eigen::Matrix<double, 3, 8> corners = frustum(1.0, 1.0, 0.1);
+  Eigen::Matrix3Xd nodes = Eigen::Matrix3Xd::Constant(3, 18, 1e3);  // far off: must not count
+  for (int k = 0; k < 4; ++k) {
+    nodes.col(k) = corners.col(k);
+    nodes.col(9 + k) = corners.col(4 + k);
+  }
+  EXPECT_NEAR(hexahedronVolume(nodes), 0.1, 1e-15);
+}
+
+TEST(ViscousStabilization, ForceAndTangentOfOneElement) {
+  const Eigen::Matrix3Xd reference = frustum(1.0, 1.0, 2.0);  // volume 2, 1/4 per node
+  Eigen::Matrix3Xd previous = reference, current = reference;
+  previous.col(3) += Eigen::Vector3d(0.1, 0, 0);
+  current.col(3) += Eigen::Vector3d(0.3, -0.2, 0.05);
+  Eigen::VectorXd force = Eigen::VectorXd::Zero(24);
+  Eigen::MatrixXd tangent = Eigen::MatrixXd::Zero(24, 24);
+  const double factorPerTime = 4.0;  // C / dt
+  addViscousForces(reference, current, previous, factorPerTime, force, &tangent);
+  const Eigen::Vector3d expected = 4.0 * 0.25 * Eigen::Vector3d(0.2, -0.2, 0.05);
+  EXPECT_NEAR((force.segment<3>(9) - expected).norm(), 0, 1e-15);
+  EXPECT_NEAR(force.norm(), expected.norm(), 1e-15);  // the other nodes have not moved
+  EXPECT_TRUE(tangent.isApprox(Eigen::MatrixXd::Identity(24, 24)));  // 4 * 1/4
+  EXPECT_NEAR(viscousWork(reference, current, previous, factorPerTime),
+              expected.dot(current.col(3) - previous.col(3)), 1e-15);
+}
+
+// The unit cube (2 x 2 x 2 uniform Hex8) with no support at all, pushed in z by a total
+// force on its top face: a free body.
+std::string freeCubeDeck(const std::string& newtonLine, const std::string& force = "10*t",
+                         const std::string& steps = "4 dt=0.25") {
+  return "mesh \"../../../meshes/cube.geo\" n=2\n"
+         "material m neohooke E=100 nu=0.3\n"
+         "elements cube hex8 material=m\n"
+         "load zmax fz \"" +
+         force +
+         "\" total\n"
+         "solve\n" +
+         newtonLine + "  steps " + steps +
+         "\n"
+         "end\n";
+}
+
+std::string virtualPath() {
+  return std::string(COVCONTACT_SOURCE_DIR) + "/tests/unit/model/free_cube.deck";
+}
+
+TEST(ViscousStabilization, AFreeCubeIsSingularWithoutIt) {
+  const DeckRun run = runDeckText(freeCubeDeck(""), virtualPath());
+  EXPECT_EQ(run.summary.outcome, RunSummary::Outcome::Singular);
+  EXPECT_EQ(run.summary.stepsConverged, 0);
+}
+
+// With it, each node's viscous force is C m_i du_i / dt, and the elastic forces of the free body
+// sum to zero, so sum_i C m_i du_i / dt must equal the load's total 10 t, component by component.
+// The masses are counted here from the uniform grid (a node at the cube's centre belongs to 8
+// elements of volume 1/8, a face centre to 4, an edge midpoint to 2, a corner to 1: m = count /
+// 64), not from the program's element volumes.
+TEST(ViscousStabilization, AFreeCubeMovesSoThatTheViscousForcesCarryTheLoad) {
+  const double factor = 0.5, dt = 0.25;
+  const DeckRun run = runDeckText(freeCubeDeck("  newton stabilize=0.5\n"), virtualPath());
+  ASSERT_EQ(run.summary.outcome, RunSummary::Outcome::Completed);
+  ASSERT_EQ(run.steps.size(), 4u);
+  const Eigen::Matrix3Xd& nodes = run.model->mesh().coordinates;
+  Eigen::VectorXd mass(nodes.cols());
+  for (Eigen::Index i = 0; i < nodes.cols(); ++i) {
+    int inner = 0;  // coordinates at 0.5: the node is shared along that axis
+    for (int c = 0; c < 3; ++c) inner += std::abs(nodes(c, i) - 0.5) < 1e-12 ? 1 : 0;
+    mass[i] = std::pow(2.0, inner) / 64;
+  }
+  ASSERT_NEAR(mass.sum(), 1.0, 1e-14);
+  Eigen::Matrix3Xd before = Eigen::Matrix3Xd::Zero(3, nodes.cols());
+  for (const RecordedStep& step : run.steps) {
+    SCOPED_TRACE(step.step);
+    const Eigen::Vector3d viscous =
+        factor / dt * ((step.displacement - before) * mass.asDiagonal()).rowwise().sum();
+    EXPECT_NEAR(viscous.x(), 0, 1e-9);
+    EXPECT_NEAR(viscous.y(), 0, 1e-9);
+    EXPECT_NEAR(viscous.z(), 10 * step.time, 1e-9 * 10 * step.time);
+    before = step.displacement;
+  }
+}
+
+// The work of the load (trapezoidal rule) against the stored energy plus the viscous work (the
+// backward-Euler force times each step's increment): they differ by the time integration's error
+// only, which the quadrature bound measures. A constant force of 10 from the first step on, 20
+// steps: the bound is half the first step's work, and the viscous forces take most of the rest,
+// so the check is not empty.
+TEST(ViscousStabilization, TheEnergyBalanceCountsTheViscousWork) {
+  const DeckRun run =
+      runDeckText(freeCubeDeck("  newton stabilize=0.5\n", "10", "20 dt=0.05"), virtualPath());
+  ASSERT_EQ(run.summary.outcome, RunSummary::Outcome::Completed);
+  const EnergyRecord& last = run.steps.back().energy;
+  EXPECT_GT(last.stabilizationDissipation, 0.5 * last.externalWork);
+  for (const RecordedStep& step : run.steps) {
+    SCOPED_TRACE(step.step);
+    EXPECT_LE(std::abs(step.energy.balance), step.energy.quadratureBound);
+  }
+  // Without the viscous work the balance would be off by it.
+  EXPECT_GT(last.stabilizationDissipation, 10 * last.quadratureBound);
+}
+
+}  // namespace
+}  // namespace cc::test
