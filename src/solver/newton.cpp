@@ -413,9 +413,14 @@ NewtonResult Newton::solve(const NewtonStep& step, const NewtonSpec& spec,
         return failed(iteration, failure.kind(), failure.what());
       }
       // Name what is missing (a support, a contact) rather than only the pivot that showed it.
-      return failed(iteration, failure.kind(),
-                    describeSingularStiffness(tangent_.free, dofs, current_, problem_.bodies()) +
-                        " (" + failure.what() + ")");
+      std::string missing =
+          describeSingularStiffness(tangent_.free, dofs, current_, problem_.bodies());
+      if (missing.starts_with("unconstrained") && spec.stabilization == 0) {
+        missing +=
+            "; if contact alone is to hold the body (or will, once it touches), viscous "
+            "stabilisation (newton stabilize=C) carries it";
+      }
+      return failed(iteration, failure.kind(), missing + " (" + failure.what() + ")");
     }
     if (tangentCheck_.step == step.step && tangentCheck_.iteration == iteration) {
       checkTangent(step, du, displacement);

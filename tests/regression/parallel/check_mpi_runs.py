@@ -15,6 +15,9 @@
   serial run's steps, iterations and forces (the prediction and its reference norms are formed
   from the process-summed tangent products), and a restart on 2 processes from step 8 of that
   file (its restart data carry the step's increment) continues as the uninterrupted serial run.
+--case stabilize: the crossing deck with viscous stabilisation (`newton stabilize=1e-3`) on 2
+  processes: the serial run's steps, iterations and forces, and its energy account with the
+  stabilisation's work (each process adds the viscous forces of the elements it owns).
 --case repeat: decks/repeatable_amg.deck (20 k equations) three times on 2 processes with
   GMRES + BoomerAMG: the same Krylov and Newton iterations and residual history, bit for bit,
   and the same displacements (users compare iteration counts between runs).
@@ -117,19 +120,19 @@ def compare_steps(reference_path, results_path, first_step=1):
 ENERGIES = ("external_work", "strain_energy", "contact_energy", "dissipation")
 
 
-def compare_energy(reference_path, results_path):
+def compare_energy(reference_path, results_path, quantities=ENERGIES):
     """The energy account of every step (attributes every process writes alike) against the
     serial run's, each quantity to 1e-8 of its largest magnitude over the run."""
     with h5py.File(reference_path, "r") as reference, h5py.File(results_path, "r") as results:
         names = step_names(reference)
-        for quantity in ENERGIES:
+        for quantity in quantities:
             want = np.array([reference["steps"][n]["energy"].attrs[quantity] for n in names])
             got = np.array([results["steps"][n]["energy"].attrs[quantity] for n in names])
             scale = max(np.abs(want).max(), 1e-300)
             error = np.abs(got - want).max() / scale
             check(error <= TOLERANCE, f"{results_path}: energy {quantity} differs by {error:.2e}")
             check(scale > 1e-300 or quantity == "dissipation", f"energy {quantity} is zero")
-    print(f"energy account of {len(names)} steps as serial ({', '.join(ENERGIES)})")
+    print(f"energy account of {len(names)} steps as serial ({', '.join(quantities)})")
 
 
 def layout_of(path):
@@ -361,6 +364,22 @@ def predictor_case(args):
           f"{worst:.1e}); restarted from step 8 on 2: {rest} steps as serial ({rest_worst:.1e})")
 
 
+def stabilize_case(args):
+    deck = crossing_variant(args, "crossing_stabilize", "stabilize=1e-3")
+    serial = os.path.join(args.scratch, "serial.h5")
+    distributed = os.path.join(args.scratch, "two.h5")
+    run_ok(args, 1, "run", deck, "-o", serial, "-q")
+    run_ok(args, 2, "run", deck, "-o", distributed, "-q")
+    count, worst = compare_steps(serial, distributed)
+    compare_energy(serial, distributed, ENERGIES + ("stabilization_dissipation",))
+    with h5py.File(serial, "r") as h5:
+        energy = h5["steps"][step_names(h5)[-1]]["energy"].attrs
+        share = energy["stabilization_dissipation"] / energy["external_work"]
+    check(share > 1e-6, f"the stabilisation did no work worth checking ({share:.1e} of the work)")
+    print(f"stabilize=1e-3 on 2 processes: {count} steps as serial (largest difference "
+          f"{worst:.1e}); the stabilisation took {100 * share:.2g} % of the work")
+
+
 def repeat_case(args):
     deck = os.path.join(args.source, "tests/regression/parallel/decks/repeatable_amg.deck")
     histories, krylov = [], []
@@ -520,13 +539,13 @@ def main():
     parser.add_argument("--scratch", required=True)
     parser.add_argument("--case", required=True,
                         choices=["crossing", "restart", "errors", "segments", "augmented",
-                                 "predictor", "repeat", "inexact", "setup"])
+                                 "predictor", "stabilize", "repeat", "inexact", "setup"])
     args = parser.parse_args()
     shutil.rmtree(args.scratch, ignore_errors=True)
     os.makedirs(args.scratch)
     {"crossing": crossing_case, "restart": restart_case, "errors": errors_case,
      "segments": segments_case, "augmented": augmented_case,
-     "predictor": predictor_case, "repeat": repeat_case,
+     "predictor": predictor_case, "stabilize": stabilize_case, "repeat": repeat_case,
      "inexact": inexact_case, "setup": setup_case}[args.case](args)
 
 

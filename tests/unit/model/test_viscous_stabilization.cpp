@@ -90,6 +90,11 @@ TEST(ViscousStabilization, AFreeCubeIsSingularWithoutIt) {
   const DeckRun run = runDeckText(freeCubeDeck(""), virtualPath());
   EXPECT_EQ(run.summary.outcome, RunSummary::Outcome::Singular);
   EXPECT_EQ(run.summary.stepsConverged, 0);
+  // The message names the free motion and the way to carry the body.
+  EXPECT_NE(run.summary.message.find("unconstrained rigid-body motion"), std::string::npos)
+      << run.summary.message;
+  EXPECT_NE(run.summary.message.find("newton stabilize=C"), std::string::npos)
+      << run.summary.message;
 }
 
 // With it, each node's viscous force is C m_i du_i / dt, and the elastic forces of the free body
