@@ -127,6 +127,15 @@ TEST(ViscousStabilization, AFreeCubeMovesSoThatTheViscousForcesCarryTheLoad) {
   }
 }
 
+// Given on a `steps` line, the factor holds for that phase only: the next phase, without it,
+// meets the free cube's singular tangent in its first step.
+TEST(ViscousStabilization, OnAStepsLineItHoldsForThatPhaseOnly) {
+  const DeckRun run = runDeckText(
+      freeCubeDeck("", "10*t", "2 dt=0.25 stabilize=0.5\n  steps 2 dt=0.25"), virtualPath());
+  EXPECT_EQ(run.summary.outcome, RunSummary::Outcome::Singular);
+  EXPECT_EQ(run.summary.stepsConverged, 2);
+}
+
 // The work of the load (trapezoidal rule) against the stored energy plus the viscous work (the
 // backward-Euler force times each step's increment): they differ by the time integration's error
 // only, which the quadrature bound measures. A constant force of 10 from the first step on, 20
