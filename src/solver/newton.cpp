@@ -266,8 +266,16 @@ NewtonResult Newton::solve(const NewtonStep& step, const NewtonSpec& spec,
   const DofMap& dofs = problem_.dofMap();
   const Eigen::Matrix3Xd& reference = problem_.referenceCoordinates();
   viscousFactor_ = spec.stabilization;
-  previous_ =
-      reference + Eigen::Map<const Eigen::Matrix3Xd>(displacement.data(), 3, reference.cols());
+  // x_n, the configuration the step starts from. A re-solve of the same attempt (after an
+  // augmented-Lagrangian update, a later stage of penalty continuation) starts from an earlier
+  // solve's solution instead, and keeps the first solve's x_n: the viscous stabilisation's
+  // rate is that of the whole step.
+  if (step.step != startedStep_ || step.attempt != startedAttempt_) {
+    previous_ =
+        reference + Eigen::Map<const Eigen::Matrix3Xd>(displacement.data(), 3, reference.cols());
+    startedStep_ = step.step;
+    startedAttempt_ = step.attempt;
+  }
   Eigen::VectorXd prescribedTarget(dofs.numPrescribed());
   problem_.prescribedValues(step.time, prescribedTarget);
   problem_.externalForces(step.time, externalForce_);

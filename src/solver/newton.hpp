@@ -185,6 +185,7 @@ class Newton {
   double assemblySeconds_ = 0;
   bool extrapolatedStart_ = false;  // the next assembly is at an extrapolated first iterate
   double viscousFactor_ = 0;        // NewtonSpec::stabilization of the step being solved
+  int startedStep_ = -1, startedAttempt_ = -1;  // the solve that set previous_ (x_n)
   struct {
     int step = -1, iteration = -1;
   } tangentCheck_;

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "solver/newton.hpp"
 #include "spring_chain.hpp"
@@ -48,6 +49,40 @@ TEST(Newton, PrescribedEndOfLinearChainSolvedByThePredictor) {
     // Force at the displaced end (the reaction): k D / n.
     EXPECT_NEAR(newton.internalForce()[3 * springs], stiffness * endDisplacement / springs, 1e-14);
   }
+}
+
+// The configuration a step starts from (AssemblyState::previous, x_n of the viscous
+// stabilisation): a re-solve of the same attempt starts from the first solve's solution but
+// keeps the first solve's x_n; a new attempt starts afresh.
+struct StartRecordingChain : SpringChain {
+  using SpringChain::SpringChain;
+  std::vector<double> starts;  // x of the end node at x_n, per assembly
+  void assemble(const AssemblyState& state, Eigen::VectorXd& internalForce,
+                SystemMatrices* tangent) override {
+    starts.push_back((*state.previous)(0, state.previous->cols() - 1));
+    SpringChain::assemble(state, internalForce, tangent);
+  }
+};
+
+TEST(Newton, AReSolveOfTheSameAttemptKeepsTheStepsStart) {
+  StartRecordingChain chain(3, SpringLaw::cubic(1.0, 1.0),
+                            [](double t) { return 0.2 * std::min(t, 1.0); });
+  RecordingObserver observer;
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(12);
+  Newton newton(chain, observer, Newton::Clock::now());
+  const double start = chain.referenceCoordinates()(0, 3);  // the end node at u = 0
+  ASSERT_EQ(newton.solve({1, 0, 1.0, 0.0}, NewtonSpec{}, u).status,
+            NewtonResult::Status::Converged);
+  ASSERT_GT(std::abs(u[9]), 0.1);  // the end node moved
+  chain.starts.clear();
+  ASSERT_EQ(newton.solve({1, 0, 1.0, 0.0}, NewtonSpec{}, u).status,
+            NewtonResult::Status::Converged);
+  ASSERT_FALSE(chain.starts.empty());
+  for (double x : chain.starts) EXPECT_EQ(x, start);
+  chain.starts.clear();
+  ASSERT_EQ(newton.solve({1, 1, 1.0, 0.0}, NewtonSpec{}, u).status,
+            NewtonResult::Status::Converged);
+  for (double x : chain.starts) EXPECT_EQ(x, start + u[9]);
 }
 
 TEST(Newton, StepStartingInEquilibriumTakesOneIteration) {
