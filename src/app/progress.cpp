@@ -53,12 +53,16 @@ void Progress::iteration(const IterationRecord& r) {
                   r.step, r.time, endTime_, r.iteration, r.relativeResidual, r.relativeEnergy));
 }
 
-void Progress::stepConverged(int step, double time, int iterations, int cutbacks) {
+void Progress::stepConverged(int step, double time, int iterations, int cutbacks,
+                             double stabilizationShare) {
   if (quiet_) return;
   const std::string text = fmt::format(
-      "step {}  t = {:.6g} of {:.6g}  {} iterations{}  |R|/|R0| = {:.2e}", step, time, endTime_,
+      "step {}  t = {:.6g} of {:.6g}  {} iterations{}  |R|/|R0| = {:.2e}{}", step, time, endTime_,
       iterations, cutbacks ? fmt::format(" after {} cut-backs", cutbacks) : "",
-      convergedRelativeResidual_);
+      convergedRelativeResidual_,
+      stabilizationShare > 0
+          ? fmt::format("  stabilisation {:.3g} % of the work", 100 * stabilizationShare)
+          : "");
   if (terminal_) {
     printLive(text);
   } else {

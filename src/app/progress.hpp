@@ -25,7 +25,10 @@ class Progress {
   // The step's final |R|/|R0| for the next stepConverged line (the load stepper reports it
   // just before every converged step).
   void convergedResidual(double relative) { convergedRelativeResidual_ = relative; }
-  void stepConverged(int step, double time, int iterations, int cutbacks);
+  // stabilizationShare: the viscous stabilisation's share of the work so far (a fraction),
+  // shown when positive, so that a user tuning `newton stabilize=` sees it step by step.
+  void stepConverged(int step, double time, int iterations, int cutbacks,
+                     double stabilizationShare = 0);
   void cutback(const CutbackRecord& record);
   // A line of its own (linear solver choice, Krylov fallback), also when quiet.
   void note(const std::string& line);

@@ -107,7 +107,13 @@ class RunObserver : public StepObserver {
       }
       if (compare) references_->observe(record);  // every converged step, written or not
     }
-    if (reports_) progress_.stepConverged(step, time, iterations, cutbacks);
+    if (reports_) {
+      const EnergyRecord& energy = model_.energy();
+      const double share = energy.stabilizationDissipation > 0 && energy.externalWork != 0
+                               ? energy.stabilizationDissipation / std::abs(energy.externalWork)
+                               : 0.0;
+      progress_.stepConverged(step, time, iterations, cutbacks, share);
+    }
   }
   // Several processes: a signal may reach them at different iterations; all stop at the first
   // poll after any one of them got it.

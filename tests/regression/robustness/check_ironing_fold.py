@@ -61,6 +61,12 @@ if r.returncode == 3:
         failures.append("the stabilised continuation does not report its dissipation")
     elif not 0 < float(share.group(1)) < 10:
         failures.append(f"the stabilisation took {share.group(1)} % of the work (limit 10 %)")
+    else:
+        # Each step line shows the share so far; the last one is the run's.
+        lines = re.findall(r"^step \d+ .*stabilisation (\S+) % of the work$", s.stdout, re.M)
+        if not lines or lines[-1] != share.group(1):
+            failures.append(f"the step lines show the stabilisation's share as {lines[-1:]}, "
+                            f"the run's is {share.group(1)} %")
     output += "\n--- continued with stabilisation ---\n" + continued
 for f in failures:
     print("FAIL:", f)
