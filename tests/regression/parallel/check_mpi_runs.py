@@ -349,13 +349,19 @@ def crossing_variant(args, name, newton_options, contact_edit=None):
     return deck
 
 
-def predictor_case(args):
-    deck = crossing_variant(args, "crossing_predictor", "predictor=extrapolate")
+def serial_and_two(args, deck):
+    """Runs the deck on 1 and on 2 processes and compares their steps; returns both results
+    files and compare_steps' (steps, worst)."""
     serial = os.path.join(args.scratch, "serial.h5")
     distributed = os.path.join(args.scratch, "two.h5")
     run_ok(args, 1, "run", deck, "-o", serial, "-q")
     run_ok(args, 2, "run", deck, "-o", distributed, "-q")
-    count, worst = compare_steps(serial, distributed)
+    return serial, distributed, *compare_steps(serial, distributed)
+
+
+def predictor_case(args):
+    deck = crossing_variant(args, "crossing_predictor", "predictor=extrapolate")
+    serial, distributed, count, worst = serial_and_two(args, deck)
     continued = os.path.join(args.scratch, "continued.h5")
     run_ok(args, 2, "run", deck, "-o", continued, "--restart", distributed, "--from-step", "8",
            "-q")
@@ -366,11 +372,7 @@ def predictor_case(args):
 
 def stabilize_case(args):
     deck = crossing_variant(args, "crossing_stabilize", "stabilize=1e-3")
-    serial = os.path.join(args.scratch, "serial.h5")
-    distributed = os.path.join(args.scratch, "two.h5")
-    run_ok(args, 1, "run", deck, "-o", serial, "-q")
-    run_ok(args, 2, "run", deck, "-o", distributed, "-q")
-    count, worst = compare_steps(serial, distributed)
+    serial, distributed, count, worst = serial_and_two(args, deck)
     compare_energy(serial, distributed, ENERGIES + ("stabilization_dissipation",))
     with h5py.File(serial, "r") as h5:
         energy = h5["steps"][step_names(h5)[-1]]["energy"].attrs
