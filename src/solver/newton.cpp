@@ -421,9 +421,10 @@ NewtonResult Newton::solve(const NewtonStep& step, const NewtonSpec& spec,
         return failed(iteration, failure.kind(), failure.what());
       }
       // Name what is missing (a support, a contact) rather than only the pivot that showed it.
-      std::string missing =
+      SingularStiffnessDiagnosis diagnosis =
           describeSingularStiffness(tangent_.free, dofs, current_, problem_.bodies());
-      if (missing.starts_with("unconstrained") && spec.stabilization == 0) {
+      std::string& missing = diagnosis.message;
+      if (diagnosis.freeRigidMotion && spec.stabilization == 0) {
         missing +=
             "; if contact alone is to hold the body (or will, once it touches), viscous "
             "stabilisation (newton stabilize=C) carries it";

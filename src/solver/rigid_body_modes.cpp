@@ -84,9 +84,10 @@ std::vector<RigidMotionRestraint> rigidMotionRestraints(const SparseMatrix& free
   return restraints;
 }
 
-std::string describeSingularStiffness(const SparseMatrix& freeStiffness, const DofMap& dofs,
-                                      const Eigen::Matrix3Xd& coordinates,
-                                      const std::vector<BodyNodes>& givenBodies) {
+SingularStiffnessDiagnosis describeSingularStiffness(const SparseMatrix& freeStiffness,
+                                                     const DofMap& dofs,
+                                                     const Eigen::Matrix3Xd& coordinates,
+                                                     const std::vector<BodyNodes>& givenBodies) {
   const std::vector<BodyNodes> bodies = givenBodies.empty() ? allNodesAsOneBody(dofs) : givenBodies;
   const std::vector<RigidMotionRestraint> restraints =
       rigidMotionRestraints(freeStiffness, dofs, coordinates, bodies);
@@ -104,19 +105,20 @@ std::string describeSingularStiffness(const SparseMatrix& freeStiffness, const D
     perBody.push_back(fmt::format("{} of body '{}'", fmt::join(motions, ", "), bodies[b].name));
   }
   if (count > 0) {
-    return fmt::format("unconstrained rigid-body motion{}: {}", count > 1 ? "s" : "",
-                       fmt::join(perBody, "; "));
+    return {fmt::format("unconstrained rigid-body motion{}: {}", count > 1 ? "s" : "",
+                        fmt::join(perBody, "; ")),
+            true};
   }
   const auto least =
       std::min_element(restraints.begin(), restraints.end(),
                        [](const RigidMotionRestraint& a, const RigidMotionRestraint& b) {
                          return a.ratio < b.ratio;
                        });
-  if (least == restraints.end()) return "no rigid-body motion moves a free dof";
-  return fmt::format(
+  if (least == restraints.end()) return {"no rigid-body motion moves a free dof"};
+  return {fmt::format(
       "every rigid-body motion is restrained (the least, {} of body '{}', at {:.2g} of the "
       "stiffest dof): look for a mechanism or a vanishing material stiffness",
-      describe(least->motion), bodies[least->body].name, least->ratio);
+      describe(least->motion), bodies[least->body].name, least->ratio)};
 }
 
 }  // namespace cc

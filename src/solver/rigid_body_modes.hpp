@@ -47,11 +47,17 @@ std::vector<RigidMotionRestraint> rigidMotionRestraints(const SparseMatrix& free
                                                         const Eigen::Matrix3Xd& coordinates,
                                                         const std::vector<BodyNodes>& bodies);
 
-// The message naming the unrestrained motions, e.g. "unconstrained rigid-body motion:
-// translation along x of body 'block'", or, when none is found, a sentence saying so with the
-// least restrained motion.
-std::string describeSingularStiffness(const SparseMatrix& freeStiffness, const DofMap& dofs,
-                                      const Eigen::Matrix3Xd& coordinates,
-                                      const std::vector<BodyNodes>& bodies);
+// What a singular K_ff leaves free. `message` names the unrestrained motions, e.g.
+// "unconstrained rigid-body motion: translation along x of body 'block'", or, when none is
+// found, says so with the least restrained motion; `freeRigidMotion` tells the two apart (a
+// free body can be held by viscous stabilisation, a mechanism inside a body cannot).
+struct SingularStiffnessDiagnosis {
+  std::string message;
+  bool freeRigidMotion = false;
+};
+SingularStiffnessDiagnosis describeSingularStiffness(const SparseMatrix& freeStiffness,
+                                                     const DofMap& dofs,
+                                                     const Eigen::Matrix3Xd& coordinates,
+                                                     const std::vector<BodyNodes>& bodies);
 
 }  // namespace cc

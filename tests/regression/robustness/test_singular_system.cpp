@@ -70,8 +70,27 @@ TEST(SingularSystem, FreeMotionsSitAtRoundOffAndRestrainedOnesFarAboveTheThresho
     }
   }
   EXPECT_EQ(free, 1);
-  EXPECT_EQ(describeSingularStiffness(tangent.free, model->dofMap(), coordinates, bodies),
+  const SingularStiffnessDiagnosis diagnosis =
+      describeSingularStiffness(tangent.free, model->dofMap(), coordinates, bodies);
+  EXPECT_EQ(diagnosis.message,
             "unconstrained rigid-body motion: translation along x of body 'block'");
+  EXPECT_TRUE(diagnosis.freeRigidMotion);
+
+  // A spring on every x dof of the block's first node holds that translation: no motion is free
+  // any more, and the diagnosis says so (a body that stabilisation could hold is no longer
+  // claimed).
+  SparseMatrix held = tangent.free;
+  const double spring = 1e-2 * held.coeffs().cwiseAbs().maxCoeff();
+  for (int dof = 0; dof < 3 * model->dofMap().numNodes(); dof += 3) {
+    const int equation = model->dofMap().equation(dof);
+    const auto& blockNodes = bodies[0].name == "block" ? bodies[0].nodes : bodies[1].nodes;
+    if (equation >= 0 && dof / 3 == blockNodes.front()) held.coeffRef(equation, equation) += spring;
+  }
+  const SingularStiffnessDiagnosis restrained =
+      describeSingularStiffness(held, model->dofMap(), coordinates, bodies);
+  EXPECT_FALSE(restrained.freeRigidMotion);
+  EXPECT_TRUE(restrained.message.starts_with("every rigid-body motion is restrained"))
+      << restrained.message;
 }
 
 }  // namespace
