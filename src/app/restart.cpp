@@ -27,6 +27,7 @@ StartState restartFrom(const std::string& file, int fromStep, Model& model) {
   start.stepSize = {point.record.stepFraction, point.record.easySteps};
   start.lastIncrement = std::move(point.record.lastIncrement);
   start.lastDt = point.record.lastDt;
+  start.viscousFactor = point.record.viscousFactor;
   model.startEnergyAccount(start.time, start.displacement);
   return start;
 }
@@ -41,6 +42,7 @@ RestartRecord restartRecordOf(const Model& model, const Eigen::VectorXd& displac
   record.displacement = displacement;
   record.stepFraction = nextStepSize.fraction;
   record.easySteps = nextStepSize.easySteps;
+  record.viscousFactor = stepper.chosenViscousFactor();
   return record;
 }
 

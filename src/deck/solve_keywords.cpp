@@ -101,7 +101,14 @@ std::vector<ValueDecl> newtonParameters() {
                       "converged step; passes an instability or a body held by contact alone, "
                       "and the energy balance reports its dissipation. 0: off")
               .withRange(Range::atLeast(0))
-              .withDefault(defaultText(defaults.stabilization))};
+              .withDefault(defaultText(defaults.stabilization)),
+          numberValue("stabilize_share",
+                      "viscous stabilisation whose factor the run chooses: the phase's first step "
+                      "is solved without it, then C is set so that a step like that one would "
+                      "dissipate this fraction of its work of the loads and supports (the share "
+                      "each step's line reports); replaces stabilize=. 0: off")
+              .withRange(Range::between(0, true, 1, false))
+              .withDefault(defaultText(defaults.stabilizationShare))};
 }
 
 std::vector<ValueDecl> cutbackParameters() {
@@ -155,7 +162,21 @@ void applyNewtonParameters(const ParsedLine& line, NewtonSpec& newton) {
     newton.penaltyContinuation = line.flag("penalty_continuation");
   }
   if (use("aug_inner")) newton.augmentedInnerTolerance = line.number("aug_inner");
-  if (use("stabilize")) newton.stabilization = line.number("stabilize");
+  // One way to set the factor: the last one given replaces the other (a phase's
+  // stabilize_share= over the newton line's stabilize=, and back).
+  if (use("stabilize") && use("stabilize_share")) {
+    line.fail(line.where(),
+              "give either stabilize=C (the factor) or stabilize_share=F (the "
+              "factor chosen by the run), not both");
+  }
+  if (use("stabilize")) {
+    newton.stabilization = line.number("stabilize");
+    newton.stabilizationShare = 0;
+  }
+  if (use("stabilize_share")) {
+    newton.stabilizationShare = line.number("stabilize_share");
+    newton.stabilization = 0;
+  }
 }
 
 // The augmented Lagrangian's re-solves start from a converged state whose contact forces the

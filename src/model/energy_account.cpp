@@ -18,6 +18,44 @@ void Model::startEnergyAccount(double time, const Eigen::VectorXd& displacement)
   energyTime_ = time;
 }
 
+namespace {
+
+// F = f_ext + reaction: the external force at the free dofs, the internal one (f_int - f_ext is
+// the reaction) at the prescribed dofs.
+Eigen::VectorXd loadAndSupportForce(const Model& model, double time,
+                                    const Eigen::VectorXd& internalForce) {
+  Eigen::VectorXd force;
+  model.externalForces(time, force);
+  for (int dof : model.dofMap().prescribedDofs()) force[dof] = internalForce[dof];
+  return force;
+}
+
+}  // namespace
+
+double Model::viscousFactorForShare(double share, double time, const Eigen::VectorXd& displacement,
+                                    const Eigen::VectorXd& internalForce) const {
+  const int n = mesh_.numNodes();
+  const double stepLength = time - energyTime_;
+  if (!(stepLength > 0)) return 0;
+  const bool booked = energyDisplacement_.size() == 3 * n;  // else the unloaded start
+  const Eigen::VectorXd previousDisplacement =
+      booked ? energyDisplacement_ : Eigen::VectorXd::Zero(3 * n);
+  const Eigen::VectorXd previousForce = booked ? energyForce_ : Eigen::VectorXd::Zero(3 * n);
+  const double work =
+      std::abs(0.5 * (loadAndSupportForce(*this, time, internalForce) + previousForce)
+                         .dot(displacement - previousDisplacement));
+  // The dissipation at C = 1: sum_a m_a |dx_a|^2 / dt.
+  const Eigen::Matrix3Xd current =
+      mesh_.coordinates + Eigen::Map<const Eigen::Matrix3Xd>(displacement.data(), 3, n);
+  const Eigen::Matrix3Xd previous =
+      mesh_.coordinates + Eigen::Map<const Eigen::Matrix3Xd>(previousDisplacement.data(), 3, n);
+  double unitDissipation = 0;
+  for (const auto& set : elementSets_) {
+    unitDissipation += set->viscousWork(mesh_.coordinates, current, previous, 1 / stepLength);
+  }
+  return work > 0 && unitDissipation > 0 ? share * work / unitDissipation : 0.0;
+}
+
 void Model::accountEnergy(double time, const Eigen::VectorXd& displacement,
                           const Eigen::VectorXd& internalForce) {
   const int n = mesh_.numNodes();
@@ -25,11 +63,7 @@ void Model::accountEnergy(double time, const Eigen::VectorXd& displacement,
     energyDisplacement_.setZero(3 * n);
     energyForce_.setZero(3 * n);
   }
-  // F = f_ext + reaction: the external force at the free dofs, the internal one (f_int - f_ext
-  // is the reaction) at the prescribed dofs.
-  Eigen::VectorXd force;
-  externalForces(time, force);
-  for (int dof : dofs_.prescribedDofs()) force[dof] = internalForce[dof];
+  const Eigen::VectorXd force = loadAndSupportForce(*this, time, internalForce);
   const Eigen::VectorXd increment = displacement - energyDisplacement_;
   energy_.externalWork += 0.5 * (force + energyForce_).dot(increment);
   energy_.quadratureBound += 0.5 * std::abs((force - energyForce_).dot(increment));

@@ -37,6 +37,8 @@ class Model : public NonlinearProblem {
   Augmentation augment() override;
   double stiffestPenaltyRatio() const override;
   void scalePenalties(double factor) override;
+  double viscousFactorForShare(double share, double time, const Eigen::VectorXd& displacement,
+                               const Eigen::VectorXd& internalForce) const override;
   void commitStep() override;
   void restoreStep() override;
   void rememberContactSearch() override;

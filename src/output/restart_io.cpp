@@ -42,6 +42,9 @@ void writeRestart(h5::FileRef file, hid_t stepGroup, const RestartRecord& restar
     h5::writeDoubles(file, group.get(), kLastIncrement, restart.lastIncrement.data(),
                      static_cast<hsize_t>(restart.lastIncrement.size() / 3), 3);
   }
+  if (restart.viscousFactor > 0) {
+    h5::writeAttribute(file, group.get(), "viscous_factor", restart.viscousFactor);
+  }
   h5::Group elements = h5::createGroup(file, group.get(), layout::kElementHistoryGroup);
   for (const auto& [name, values] : restart.elementHistory) {
     // An empty history (Hex8) is written as an empty dataset so that the set is still listed;
@@ -98,6 +101,9 @@ RestartPoint readRestart(const std::string& path, int step) {
     const Eigen::MatrixXd increment = reader.readMatrix(group + "/" + kLastIncrement).transpose();
     record.lastIncrement = Eigen::Map<const Eigen::VectorXd>(increment.data(), increment.size());
     record.lastDt = reader.numberAttribute(group, "last_dt");
+  }
+  if (reader.hasAttribute(group, "viscous_factor")) {
+    record.viscousFactor = reader.numberAttribute(group, "viscous_factor");
   }
   const std::string elements = group + "/" + layout::kElementHistoryGroup;
   for (const std::string& link : reader.children(elements)) {

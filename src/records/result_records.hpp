@@ -76,6 +76,9 @@ struct RestartRecord {
   // extrapolates): a restarted run then predicts its first step as the full run did.
   Eigen::VectorXd lastIncrement;  // 3 * numNodes, node-major
   double lastDt = 0;
+  // The viscous stabilisation factor the phase chose (NewtonSpec::stabilizationShare; 0: none
+  // chosen), so that a restart inside the phase goes on with it rather than choosing anew.
+  double viscousFactor = 0;
 };
 
 struct StepRecord {

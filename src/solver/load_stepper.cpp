@@ -145,6 +145,7 @@ RunSummary LoadStepper::run(const StartState& start) {
   } inactiveAfterwards{activeRun_};
   nextStepSize_ = start.stepSize;
   resumeStepSize_ = start.step > 0;
+  resumeViscousFactor_ = start.viscousFactor;
   summary_.finalTime = start.time;
   double phaseStart = 0;
   for (const PhaseSpec& phase : phases_) {
@@ -155,16 +156,21 @@ RunSummary LoadStepper::run(const StartState& start) {
   return summary_;
 }
 
-bool LoadStepper::runPhase(const PhaseSpec& phase, double phaseStart, PhaseRun& run) {
+bool LoadStepper::runPhase(const PhaseSpec& givenPhase, double phaseStart, PhaseRun& run) {
+  PhaseSpec phase = givenPhase;  // its viscous factor may be chosen on the way
   StepControl control;
+  chosenViscousFactor_ = 0;
   double position = std::max(0.0, snapped((run.time - phaseStart) / phase.dt));
   if (resumeStepSize_ && position < phase.steps) {
-    // A restart inside this phase continues with the stored step size; at a phase start the
-    // phase begins afresh, as it would have.
+    // A restart inside this phase continues with the stored step size and chosen factor; at a
+    // phase start the phase begins afresh, as it would have.
     resumeStepSize_ = false;
     if (position > 0) {
       control.fraction = nextStepSize_.fraction;
       control.easySteps = nextStepSize_.easySteps;
+      if (phase.newton.stabilizationShare > 0 && resumeViscousFactor_ > 0) {
+        phase.newton.stabilization = chosenViscousFactor_ = resumeViscousFactor_;
+      }
     }
   }
   while (position < phase.steps) {
@@ -201,6 +207,8 @@ bool LoadStepper::runPhase(const PhaseSpec& phase, double phaseStart, PhaseRun& 
     }
     if (result.status == NewtonResult::Status::Converged) {
       position = target;
+      // Before acceptStep: the restart record written there carries the chosen factor.
+      chooseViscousFactor(phase, targetTime, run);
       if (!acceptStep(phase, result, targetTime, position >= phase.steps, control, run)) {
         return false;
       }
@@ -209,6 +217,23 @@ bool LoadStepper::runPhase(const PhaseSpec& phase, double phaseStart, PhaseRun& 
     }
   }
   return true;
+}
+
+// The phase's first converged step, solved without stabilisation, measures what a step of the
+// phase costs: C = share |W| dt / sum_a m_a |dx_a|^2 makes a step like it dissipate `share` of
+// its work W (NewtonSpec::stabilizationShare). A step that did no work leaves the choice to the
+// next one.
+void LoadStepper::chooseViscousFactor(PhaseSpec& phase, double time, const PhaseRun& run) {
+  NewtonSpec& newton = phase.newton;
+  if (!(newton.stabilizationShare > 0) || newton.stabilization > 0) return;
+  const double factor = problem_.viscousFactorForShare(newton.stabilizationShare, time,
+                                                       run.displacement, newton_->internalForce());
+  if (!(factor > 0) || !std::isfinite(factor)) return;
+  newton.stabilization = chosenViscousFactor_ = factor;
+  observer_.note(fmt::format(
+      "viscous stabilisation: factor C = {:.4g} from step {} on (stabilize_share={:.3g}: a step "
+      "like step {}, t = {:.6g}, dissipates that share of its work)",
+      factor, run.step + 2, newton.stabilizationShare, run.step + 1, time));
 }
 
 // A failed attempt that is retried on the same step (not cut back): its trial state is

@@ -53,6 +53,8 @@ struct StartState {
   // first step is not extrapolated.
   Eigen::VectorXd lastIncrement;
   double lastDt = 0;
+  // The factor the phase started from chose (NewtonSpec::stabilizationShare; 0: none yet).
+  double viscousFactor = 0;
 };
 
 class LoadStepper {
@@ -70,6 +72,9 @@ class LoadStepper {
   // extrapolates (NewtonSpec::Predictor::Extrapolate), what a restart needs; otherwise null.
   const Eigen::VectorXd* lastIncrement() const;
   double lastDt() const;
+  // During StepObserver::stepConverged, the viscous stabilisation factor the running phase
+  // chose for the steps after it (NewtonSpec::stabilizationShare; 0: none chosen).
+  double chosenViscousFactor() const { return chosenViscousFactor_; }
   // Diagnostics: see Newton::setTangentCheck.
   void setTangentCheck(int step, int iteration) { tangentCheck_ = {step, iteration}; }
 
@@ -90,7 +95,9 @@ class LoadStepper {
   NewtonResult augmentStep(NewtonSpec spec, const NewtonStep& step, NewtonResult result,
                            PhaseRun& run);
   // Each returns false when the run stops (summary_ says why).
-  bool runPhase(const PhaseSpec& phase, double phaseStart, PhaseRun& run);
+  bool runPhase(const PhaseSpec& givenPhase, double phaseStart, PhaseRun& run);
+  // NewtonSpec::stabilizationShare: sets the phase's factor from its first converged step.
+  void chooseViscousFactor(PhaseSpec& phase, double time, const PhaseRun& run);
   bool acceptStep(const PhaseSpec& phase, const NewtonResult& result, double time, bool phaseEnd,
                   StepControl& control, PhaseRun& run);
   std::string withFold(const std::string& message) const;
@@ -105,7 +112,9 @@ class LoadStepper {
   std::unique_ptr<Newton> newton_;
   RunSummary summary_;
   StepSize nextStepSize_;
-  bool resumeStepSize_ = false;  // a restart's step size still waits for its phase
+  bool resumeStepSize_ = false;     // a restart's step size still waits for its phase
+  double resumeViscousFactor_ = 0;  // a restart's chosen factor, for the same phase
+  double chosenViscousFactor_ = 0;
   std::pair<int, int> tangentCheck_{-1, -1};
   const PhaseRun* activeRun_ = nullptr;  // during run()
 };

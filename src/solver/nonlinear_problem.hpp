@@ -46,6 +46,15 @@ class NonlinearProblem {
   // factor on every pair's penalties (1: as built).
   virtual double stiffestPenaltyRatio() const { return 0; }
   virtual void scalePenalties(double /*factor*/) {}
+  // NewtonSpec::stabilizationShare: the viscous stabilisation factor C for which the step that
+  // converged at `time` with `displacement` and `internalForce` (not yet booked) would have
+  // dissipated `share` of its work of the loads and supports, measured from the last step the
+  // energy balance booked. 0 when that step did no work or moved no solid node.
+  virtual double viscousFactorForShare(double /*share*/, double /*time*/,
+                                       const Eigen::VectorXd& /*displacement*/,
+                                       const Eigen::VectorXd& /*internalForce*/) const {
+    return 0;
+  }
   virtual void commitStep() = 0;   // the step converged: keep its history
   virtual void restoreStep() = 0;  // the step is cut back: forget the attempt
   // The contact search state (each point's master segment and parameter): remembered at an

@@ -190,6 +190,16 @@ struct NewtonSpec {
   // the price of a rate-dependent force whose work the energy balance reports as
   // `stabilization_dissipation`. The same role as Abaqus's *STATIC, STABILIZE with a factor.
   double stabilization = 0;
+  // The factor chosen by the run instead (deck: `stabilize_share=F`; off at 0): the phase's
+  // first step is solved without stabilisation, and C is then set for the rest of the phase
+  // so that a step like that one would dissipate the fraction F of its work of the loads and
+  // supports, C = F |W| dt / sum_a m_a |x_a - x_n,a|^2 (LoadStepper). The share is the
+  // quantity the run reports step by step, so the knob and the report are one number. Abaqus
+  // and ANSYS measure their fraction against the strain energy instead; in steady sliding that
+  // hardly changes from step to step (the work goes into friction), so it cannot set a factor
+  // for a phase that starts there. Never set together with `stabilization` (the deck keeps
+  // the last one given).
+  double stabilizationShare = 0;
 };
 
 // The linear solver of the Newton systems (deck: `solve solver=...`, issue 13). Auto keeps the

@@ -3,7 +3,12 @@
 // and a run continued from a saved step ends exactly where the uninterrupted run ends.
 #include <gtest/gtest.h>
 
+#include <fstream>
+
 #include "deck/deck_parser.hpp"
+#include "output/restart_io.hpp"
+#include "output/results_layout.hpp"
+#include "output/results_reader.hpp"
 #include "stress_support.hpp"
 
 namespace cc::test {
@@ -157,6 +162,38 @@ TEST(History, AHistoryThatDoesNotFitTheModelIsRefusedWithItsName) {
   legacy.contactHistory[0].second.conservativeResize(20, Eigen::NoChange);
   EXPECT_NO_THROW(model->restoreHistory(legacy));
   EXPECT_NO_THROW(model->restoreHistory(history));
+}
+
+// A phase with `stabilize_share` chooses its viscous factor after its first step. The factor is
+// restart data, from the step that chose it on: continued from step 1, the run must go on with
+// it and end exactly where the uninterrupted run ends. Choosing anew would solve step 2
+// without stabilisation and take another factor from it.
+TEST(History, AChosenViscousFactorIsRestartData) {
+  const std::string directory = scratchDirectory("chosen_viscous_factor");
+  std::ofstream(directory + "/cube.deck")
+      << "mesh \"" << COVCONTACT_SOURCE_DIR << "/meshes/cube.geo\" n=2\n"
+      << "material m neohooke E=100 nu=0.3\n"
+         "elements cube hex8 material=m\n"
+         "fix zmin all\n"
+         "load zmax fz \"10*t\" total\n"
+         "solve\n"
+         "  steps 6 dt=0.25 stabilize_share=0.05\n"
+         "end\n";
+  const CommandResult full = runCovcontact("run -q --threads 1 cube.deck -o full.h5", directory);
+  ASSERT_EQ(full.exitCode, 0) << full.error;
+  const CommandResult continued = runCovcontact(
+      "run -q --threads 1 cube.deck --restart full.h5 --from-step 1 -o continued.h5", directory);
+  ASSERT_EQ(continued.exitCode, 0) << continued.error;
+
+  const ResultsReader fullReader(directory + "/full.h5");
+  const ResultsReader continuedReader(directory + "/continued.h5");
+  const std::string restart = layout::stepGroupPath(1) + "/" + layout::kRestartGroup;
+  ASSERT_TRUE(fullReader.hasAttribute(restart, "viscous_factor"));
+  EXPECT_GT(fullReader.numberAttribute(restart, "viscous_factor"), 0.0);
+  const std::string last = layout::stepGroupPath(6) + "/" + layout::kDisplacement;
+  const Eigen::MatrixXd expected = fullReader.readMatrix(last);
+  EXPECT_LT((continuedReader.readMatrix(last) - expected).cwiseAbs().maxCoeff(),
+            1e-12 * expected.cwiseAbs().maxCoeff());
 }
 
 }  // namespace

@@ -124,6 +124,11 @@ std::vector<ErrorCase> valueCases() {
        "cutback: factor must be > 0 and < 1, got 1"},
       {"ZeroIterations", replaced(6, "  newton maxit=0"), 6, 16,
        "newton: maxit must be >= 1, got 0"},
+      {"StabilizeShareOfOne", replaced(6, "  newton stabilize_share=1"), 6, 26,
+       "newton: stabilize_share must be >= 0 and < 1, got 1"},
+      {"StabilizeTwoWays", replaced(6, "  steps 1 dt=1 stabilize=0.1 stabilize_share=0.01"), 6, 3,
+       "steps: give either stabilize=C (the factor) or stabilize_share=F (the factor chosen by "
+       "the run), not both"},
   };
 }
 

@@ -55,6 +55,28 @@ const ProblemSpec& completeSpec() {
   return spec;
 }
 
+// The viscous factor is set one way at a time: a phase's stabilize_share= replaces the newton
+// line's stabilize= for that phase only, and a later newton line's stabilize= the share.
+TEST(DeckParser, StabilizeAndStabilizeShareReplaceEachOther) {
+  const ProblemSpec spec = parseDeckText(kMinimalDeck.substr(0, kMinimalDeck.find("solve")) +
+                                             "solve\n"
+                                             "  newton stabilize=0.01\n"
+                                             "  steps 1 dt=1\n"
+                                             "  steps 1 dt=1 stabilize_share=0.02\n"
+                                             "  steps 1 dt=1\n"
+                                             "  newton stabilize_share=0.03\n"
+                                             "  steps 1 dt=1\n"
+                                             "end\n",
+                                         virtualDeckPath());
+  ASSERT_EQ(spec.phases.size(), 4u);
+  const double factors[] = {0.01, 0, 0.01, 0}, shares[] = {0, 0.02, 0, 0.03};
+  for (std::size_t i = 0; i < 4; ++i) {
+    SCOPED_TRACE(i);
+    EXPECT_EQ(spec.phases[i].newton.stabilization, factors[i]);
+    EXPECT_EQ(spec.phases[i].newton.stabilizationShare, shares[i]);
+  }
+}
+
 TEST(CompleteDeck, SourceTitleAndMesh) {
   const ProblemSpec& spec = completeSpec();
   EXPECT_EQ(spec.title, "Block on base: every keyword");

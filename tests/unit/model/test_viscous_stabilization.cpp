@@ -3,6 +3,7 @@
 // that nothing supports, which without it has a singular tangent and with it must move so that
 // the viscous forces balance the load (the elastic forces of a free body sum to zero), and
 // whose energy balance must account for the viscous work.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -97,23 +98,28 @@ TEST(ViscousStabilization, AFreeCubeIsSingularWithoutIt) {
       << run.summary.message;
 }
 
-// With it, each node's viscous force is C m_i du_i / dt, and the elastic forces of the free body
-// sum to zero, so sum_i C m_i du_i / dt must equal the load's total 10 t, component by component.
-// The masses are counted here from the uniform grid (a node at the cube's centre belongs to 8
-// elements of volume 1/8, a face centre to 4, an edge midpoint to 2, a corner to 1: m = count /
-// 64), not from the program's element volumes.
-TEST(ViscousStabilization, AFreeCubeMovesSoThatTheViscousForcesCarryTheLoad) {
-  const double factor = 0.5, dt = 0.25;
-  const DeckRun run = runDeckText(freeCubeDeck("  newton stabilize=0.5\n"), virtualPath());
-  ASSERT_EQ(run.summary.outcome, RunSummary::Outcome::Completed);
-  ASSERT_EQ(run.steps.size(), 4u);
-  const Eigen::Matrix3Xd& nodes = run.model->mesh().coordinates;
+// The lumped masses counted from the uniform grid of the unit cube (2 x 2 x 2 Hex8): a node at
+// the cube's centre belongs to 8 elements of volume 1/8, a face centre to 4, an edge midpoint
+// to 2, a corner to 1: m = count / 64. Not from the program's element volumes.
+Eigen::VectorXd gridMasses(const Eigen::Matrix3Xd& nodes) {
   Eigen::VectorXd mass(nodes.cols());
   for (Eigen::Index i = 0; i < nodes.cols(); ++i) {
     int inner = 0;  // coordinates at 0.5: the node is shared along that axis
     for (int c = 0; c < 3; ++c) inner += std::abs(nodes(c, i) - 0.5) < 1e-12 ? 1 : 0;
     mass[i] = std::pow(2.0, inner) / 64;
   }
+  return mass;
+}
+
+// With it, each node's viscous force is C m_i du_i / dt, and the elastic forces of the free body
+// sum to zero, so sum_i C m_i du_i / dt must equal the load's total 10 t, component by component.
+TEST(ViscousStabilization, AFreeCubeMovesSoThatTheViscousForcesCarryTheLoad) {
+  const double factor = 0.5, dt = 0.25;
+  const DeckRun run = runDeckText(freeCubeDeck("  newton stabilize=0.5\n"), virtualPath());
+  ASSERT_EQ(run.summary.outcome, RunSummary::Outcome::Completed);
+  ASSERT_EQ(run.steps.size(), 4u);
+  const Eigen::Matrix3Xd& nodes = run.model->mesh().coordinates;
+  const Eigen::VectorXd mass = gridMasses(nodes);
   ASSERT_NEAR(mass.sum(), 1.0, 1e-14);
   Eigen::Matrix3Xd before = Eigen::Matrix3Xd::Zero(3, nodes.cols());
   for (const RecordedStep& step : run.steps) {
@@ -153,6 +159,70 @@ TEST(ViscousStabilization, TheEnergyBalanceCountsTheViscousWork) {
   }
   // Without the viscous work the balance would be off by it.
   EXPECT_GT(last.stabilizationDissipation, 10 * last.quadratureBound);
+}
+
+// The unit cube clamped at its bottom and pulled at its top by a total force 10 t, with the
+// factor chosen by the run (`stabilize_share`) or given (`stabilize`) on the steps lines.
+std::string clampedCubeDeck(const std::string& steps) {
+  return "mesh \"../../../meshes/cube.geo\" n=2\n"
+         "material m neohooke E=100 nu=0.3\n"
+         "elements cube hex8 material=m\n"
+         "fix zmin all\n"
+         "load zmax fz \"10*t\" total\n"
+         "solve\n"
+         "  steps " +
+         steps +
+         "\n"
+         "end\n";
+}
+
+// The load's nodal shares on the top face: `total` splits it equally over the set's 9 nodes.
+Eigen::VectorXd topLoadShares(const Eigen::Matrix3Xd& nodes) {
+  Eigen::VectorXd share = Eigen::VectorXd::Zero(nodes.cols());
+  for (Eigen::Index i = 0; i < nodes.cols(); ++i) {
+    if (std::abs(nodes(2, i) - 1) < 1e-12) share[i] = 1.0 / 9;
+  }
+  return share;
+}
+
+// stabilize_share=F: the phase's first step is solved without stabilisation, and the factor
+// then makes a step like it dissipate F of its work: C = F W_1 dt / sum_i m_i |du_i|^2. W_1 is
+// the load's work over step 1 by the trapezoidal rule (the clamped nodes do none), counted here
+// from the nodal loads; the factor must be the one the later steps were solved with, which the
+// same deck with that factor given from step 2 on shows, to the solver's round-off.
+TEST(ViscousStabilization, AShareSetsTheFactorFromThePhasesFirstStep) {
+  const double share = 0.05, dt = 0.25;
+  const DeckRun chosen =
+      runDeckText(clampedCubeDeck("4 dt=0.25 stabilize_share=0.05"), virtualPath());
+  ASSERT_EQ(chosen.summary.outcome, RunSummary::Outcome::Completed);
+  ASSERT_EQ(chosen.steps.size(), 4u);
+  const Eigen::Matrix3Xd& nodes = chosen.model->mesh().coordinates;
+  const Eigen::VectorXd mass = gridMasses(nodes);
+  const Eigen::Matrix3Xd& first = chosen.steps[0].displacement;
+  const double work = 0.5 * 10 * dt * first.row(2).dot(topLoadShares(nodes));
+  const double unitDissipation = first.colwise().squaredNorm().dot(mass) / dt;
+  const double factor = share * work / unitDissipation;
+  EXPECT_EQ(chosen.steps[0].energy.stabilizationDissipation, 0.0);
+
+  // Step 2's dissipation, from the displacements: the factor the run applied.
+  const Eigen::Matrix3Xd second = chosen.steps[1].displacement - first;
+  const double applied = chosen.steps[1].energy.stabilizationDissipation /
+                         (second.colwise().squaredNorm().dot(mass) / dt);
+  EXPECT_NEAR(applied, factor, 1e-12 * factor);
+
+  const DeckRun given = runDeckText(
+      clampedCubeDeck(fmt::format("1 dt=0.25\n  steps 3 dt=0.25 stabilize={:.17g}", factor)),
+      virtualPath());
+  ASSERT_EQ(given.steps.size(), 4u);
+  for (std::size_t k = 0; k < 4; ++k) {
+    SCOPED_TRACE(k + 1);
+    EXPECT_LT((chosen.steps[k].displacement - given.steps[k].displacement).norm(),
+              1e-12 * given.steps[k].displacement.norm());
+  }
+  // The viscous force resists the pull: the stabilised top moves less than without it.
+  const DeckRun plain = runDeckText(clampedCubeDeck("4 dt=0.25"), virtualPath());
+  EXPECT_LT(chosen.steps[1].displacement.row(2).maxCoeff(),
+            plain.steps[1].displacement.row(2).maxCoeff());
 }
 
 }  // namespace
