@@ -26,7 +26,7 @@ DECKS = os.path.join(ROOT, "input", "stress", "ball")
 def main():
     args = ironing_predictor.parse_batch_args(__doc__, "/tmp/ball_cases", 300)
     os.makedirs(args.work, exist_ok=True)
-    names = sorted(d[:-5] for d in os.listdir(DECKS) if d.endswith(".deck") and args.only in d)
+    names = sorted(d[:-5] for d in os.listdir(DECKS) if d.endswith(".deck") and ironing_predictor.selected(d, args.only))
     with concurrent.futures.ThreadPoolExecutor(args.jobs) as pool:
         jobs = {name: pool.submit(ironing_predictor.report, os.path.join(args.work, name))
                 if args.report_only else

@@ -4,13 +4,16 @@ iterations per step in developed sliding (t > 0.4), retries and cut-backs, the f
 the mean die force of each run, as the Markdown table of docs/verification/sliding.md ("Seventh
 session"). One command from a built checkout:
 
-    /usr/bin/python3 scripts/ironing_predictor.py [--only SUBSTRING] [--limit SECONDS] [--jobs N]
+    /usr/bin/python3 scripts/ironing_predictor.py [--only SUBSTRING[,SUBSTRING...]]
+        [--limit SECONDS] [--jobs N] [--tangent full|exact] [--extrapolate-only]
 
 Each run gets --threads 1 and is interrupted (SIGINT: its converged steps are kept) after
 --limit seconds (default 200). Besides the committed decks it runs the variants the table
 names (v): STS with `surface=smooth` added to a faceted deck, NTS with the energy criterion
 (`converge=residual` removed) and STAS without the line search. The variants and results go to
 --work (default /tmp/ironing_predictor); nothing is written into the source tree.
+--tangent replaces every deck's contact tangent (the decks have `tangent=exact`), for the
+report's table by tangent option; --extrapolate-only runs only the predictor column.
 About 40 minutes on 2 cores for everything (--jobs 2).
 """
 import argparse
@@ -101,28 +104,56 @@ def iterations_cell(result):
             f"{result.get('line_search_retries', 0)} / {result.get('cutbacks', 0)})")
 
 
-def parse_batch_args(doc, work, limit):
-    """The command line of a batch of decks (this script, ball_cases.py)."""
+def selected(name, only):
+    """--only: the case names containing any of the comma-separated substrings (one ending in
+    '$': the names ending in it)."""
+    return any(name.endswith(part[:-1]) if part.endswith("$") else part in name
+               for part in only.split(","))
+
+
+def parse_batch_args(doc, work, limit, extra=None):
+    """The command line of a batch of decks (this script, ball_cases.py); extra(parser) adds a
+    script's own options."""
     parser = argparse.ArgumentParser(description=doc.splitlines()[0])
     parser.add_argument("--covcontact", default=os.path.join(ROOT, "build", "src", "app",
                                                              "covcontact"))
     parser.add_argument("--work", default=work)
-    parser.add_argument("--only", default="", help="only the cases whose name contains this")
+    parser.add_argument("--only", default="",
+                        help="only the cases whose name contains this (or one of these, "
+                             "comma-separated; 'x$': ending in x)")
     parser.add_argument("--limit", type=float, default=limit, help="seconds per run")
     parser.add_argument("--jobs", type=int, default=2)
     parser.add_argument("--report-only", action="store_true",
                         help="tabulate the results already in --work without running")
+    if extra:
+        extra(parser)
     return parser.parse_args()
 
 
+def tangent_options(parser):
+    parser.add_argument("--tangent", choices=("full", "exact"),
+                        help="every deck's contact tangent (default: the deck's, exact)")
+    parser.add_argument("--extrapolate-only", action="store_true",
+                        help="only the runs with predictor=extrapolate")
+
+
 def main():
-    args = parse_batch_args(__doc__, "/tmp/ironing_predictor", 200)
+    args = parse_batch_args(__doc__, "/tmp/ironing_predictor", 200, tangent_options)
     os.makedirs(args.work, exist_ok=True)
-    todo = [(name, text) for name, text in cases() if args.only in name]
+    todo = [(name, text) for name, text in cases() if selected(name, args.only)]
+    if args.tangent:
+        for name, text in todo:
+            if "tangent=exact" not in text:
+                sys.exit(f"{name}: no tangent=exact to replace")
+        todo = [(name, text.replace("tangent=exact", f"tangent={args.tangent}"))
+                for name, text in todo]
+    labels = ("extrapolate",) if args.extrapolate_only else ("default", "extrapolate")
     jobs = []
     with concurrent.futures.ThreadPoolExecutor(args.jobs) as pool:
         for name, text in todo:
             for label, variant in (("default", text), ("extrapolate", with_predictor(text))):
+                if label not in labels:
+                    continue
                 stem = f"{name}_{label}"
                 jobs.append((name, label, pool.submit(
                     report, os.path.join(args.work, re.sub(r"[^A-Za-z0-9_]", "_", stem)))
@@ -133,7 +164,7 @@ def main():
           "(+discarded, line-search retries / cut-backs), mean Fz |")
     print("|---|---|---|---|")
     for name, _ in todo:
-        before, after = results[(name, "default")], results[(name, "extrapolate")]
+        before, after = results.get((name, "default"), {}), results[(name, "extrapolate")]
         fz = after.get("Fz_mean")
         print(f"| `{name}` | {cell(before)} | {cell(after)} | {iterations_cell(after)}"
               + (f", {abs(fz):.2f}" if fz is not None else "") + " |")
