@@ -15,6 +15,7 @@ namespace cc {
 void Model::startEnergyAccount(double time, const Eigen::VectorXd& displacement) {
   energyDisplacement_ = displacement;
   energyForce_.setZero(displacement.size());
+  energyForceKnown_ = false;
   energyTime_ = time;
 }
 
@@ -40,10 +41,14 @@ double Model::viscousFactorForShare(double share, double time, const Eigen::Vect
   const bool booked = energyDisplacement_.size() == 3 * n;  // else the unloaded start
   const Eigen::VectorXd previousDisplacement =
       booked ? energyDisplacement_ : Eigen::VectorXd::Zero(3 * n);
-  const Eigen::VectorXd previousForce = booked ? energyForce_ : Eigen::VectorXd::Zero(3 * n);
+  const Eigen::VectorXd force = loadAndSupportForce(*this, time, internalForce);
+  // After a restart the forces at its state are not stored: the step's own force stands for
+  // them (the step's work by the one-sided rule, not half of it).
+  const Eigen::VectorXd previousForce = !booked             ? Eigen::VectorXd::Zero(3 * n)
+                                        : energyForceKnown_ ? energyForce_
+                                                            : force;
   const double work =
-      std::abs(0.5 * (loadAndSupportForce(*this, time, internalForce) + previousForce)
-                         .dot(displacement - previousDisplacement));
+      std::abs(0.5 * (force + previousForce).dot(displacement - previousDisplacement));
   // The dissipation at C = 1: sum_a m_a |dx_a|^2 / dt.
   const Eigen::Matrix3Xd current =
       mesh_.coordinates + Eigen::Map<const Eigen::Matrix3Xd>(displacement.data(), 3, n);
@@ -96,6 +101,7 @@ void Model::accountEnergy(double time, const Eigen::VectorXd& displacement,
   energyTime_ = time;
   energyDisplacement_ = displacement;
   energyForce_ = force;
+  energyForceKnown_ = true;
 }
 
 }  // namespace cc

@@ -128,6 +128,7 @@ class Model : public NonlinearProblem {
   double energyTime_ = 0;
   double energyStepLength_ = 0;
   Eigen::VectorXd energyDisplacement_, energyForce_;
+  bool energyForceKnown_ = true;  // false after a restart, until the first step is booked
   // The viscous stabilisation factor of the last assembly: that of the step being accounted,
   // whose converged state Newton evaluates last.
   double viscousFactor_ = 0;

@@ -164,21 +164,32 @@ TEST(History, AHistoryThatDoesNotFitTheModelIsRefusedWithItsName) {
   EXPECT_NO_THROW(model->restoreHistory(history));
 }
 
-// A phase with `stabilize_share` chooses its viscous factor after its first step. The factor is
-// restart data, from the step that chose it on: continued from step 1, the run must go on with
-// it and end exactly where the uninterrupted run ends. Choosing anew would solve step 2
-// without stabilisation and take another factor from it.
-TEST(History, AChosenViscousFactorIsRestartData) {
-  const std::string directory = scratchDirectory("chosen_viscous_factor");
-  std::ofstream(directory + "/cube.deck")
+// The unit cube clamped at its bottom and pulled at its top by a total force 10 t, written to
+// `directory`/`name` with the given steps lines.
+void writeClampedCubeDeck(const std::string& directory, const std::string& name,
+                          const std::string& steps) {
+  std::ofstream(directory + "/" + name)
       << "mesh \"" << COVCONTACT_SOURCE_DIR << "/meshes/cube.geo\" n=2\n"
       << "material m neohooke E=100 nu=0.3\n"
          "elements cube hex8 material=m\n"
          "fix zmin all\n"
          "load zmax fz \"10*t\" total\n"
          "solve\n"
-         "  steps 6 dt=0.25 stabilize_share=0.05\n"
-         "end\n";
+      << steps << "end\n";
+}
+
+double chosenFactor(const ResultsReader& reader, int step) {
+  return reader.numberAttribute(layout::stepGroupPath(step) + "/" + layout::kRestartGroup,
+                                "viscous_factor");
+}
+
+// A phase with `stabilize_share` chooses its viscous factor after its first step. The factor is
+// restart data, from the step that chose it on: continued from step 1, the run must go on with
+// it and end exactly where the uninterrupted run ends. Choosing anew would solve step 2
+// without stabilisation and take another factor from it.
+TEST(History, AChosenViscousFactorIsRestartData) {
+  const std::string directory = scratchDirectory("chosen_viscous_factor");
+  writeClampedCubeDeck(directory, "cube.deck", "  steps 6 dt=0.25 stabilize_share=0.05\n");
   const CommandResult full = runCovcontact("run -q --threads 1 cube.deck -o full.h5", directory);
   ASSERT_EQ(full.exitCode, 0) << full.error;
   const CommandResult continued = runCovcontact(
@@ -187,13 +198,34 @@ TEST(History, AChosenViscousFactorIsRestartData) {
 
   const ResultsReader fullReader(directory + "/full.h5");
   const ResultsReader continuedReader(directory + "/continued.h5");
-  const std::string restart = layout::stepGroupPath(1) + "/" + layout::kRestartGroup;
-  ASSERT_TRUE(fullReader.hasAttribute(restart, "viscous_factor"));
-  EXPECT_GT(fullReader.numberAttribute(restart, "viscous_factor"), 0.0);
+  EXPECT_GT(chosenFactor(fullReader, 1), 0.0);
   const std::string last = layout::stepGroupPath(6) + "/" + layout::kDisplacement;
   const Eigen::MatrixXd expected = fullReader.readMatrix(last);
   EXPECT_LT((continuedReader.readMatrix(last) - expected).cwiseAbs().maxCoeff(),
             1e-12 * expected.cwiseAbs().maxCoeff());
+}
+
+// A run continued from a file whose step holds no factor (here one written without
+// stabilisation, its deck then given a stabilised phase) chooses it from its first step. The
+// forces at the restart state are not stored, so that step's work is counted with its own
+// force, F_3 . du_3, where the uninterrupted run counts (F_2 + F_3) . du_3 / 2. Step 3 itself
+// is the same in both (solved without stabilisation from the same state), and the load is 10 t
+// on free dofs only, so the two factors stand exactly as F_3 / ((F_2 + F_3) / 2) = 7.5 / 6.25.
+// Taking the unknown force as zero instead would halve the work (ratio 0.6).
+TEST(History, AFactorChosenAfterARestartCountsTheStepsWorkWithItsOwnForce) {
+  const std::string directory = scratchDirectory("factor_after_restart");
+  const std::string phases = "  steps 2 dt=0.25\n  steps 4 dt=0.25 stabilize_share=0.05\n";
+  writeClampedCubeDeck(directory, "plain.deck", "  steps 6 dt=0.25\n");
+  writeClampedCubeDeck(directory, "stabilized.deck", phases);
+  ASSERT_EQ(runCovcontact("run -q --threads 1 plain.deck -o plain.h5", directory).exitCode, 0);
+  ASSERT_EQ(runCovcontact("run -q --threads 1 stabilized.deck -o full.h5", directory).exitCode, 0);
+  const CommandResult continued = runCovcontact(
+      "run -q --threads 1 stabilized.deck --restart plain.h5 --from-step 2 -o continued.h5",
+      directory);
+  ASSERT_EQ(continued.exitCode, 0) << continued.error;
+  const double uninterrupted = chosenFactor(ResultsReader(directory + "/full.h5"), 3);
+  const double afterRestart = chosenFactor(ResultsReader(directory + "/continued.h5"), 3);
+  EXPECT_NEAR(afterRestart / uninterrupted, 7.5 / 6.25, 1e-12);
 }
 
 }  // namespace
