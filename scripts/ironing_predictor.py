@@ -160,13 +160,15 @@ def main():
                     if args.report_only else
                     pool.submit(run, args.covcontact, args.work, stem, variant, args.limit)))
     results = {(name, label): job.result() for name, label, job in jobs}
-    print("| deck | default: developed | extrapolate: developed | extrapolate: its "
-          "(+discarded, line-search retries / cut-backs), mean Fz |")
-    print("|---|---|---|---|")
+    both = len(labels) == 2
+    print("| deck |" + (" default: developed |" if both else "") + " extrapolate: developed | "
+          "extrapolate: its (+discarded, line-search retries / cut-backs), mean Fz |")
+    print("|---|---|---|" + ("---|" if both else ""))
     for name, _ in todo:
-        before, after = results.get((name, "default"), {}), results[(name, "extrapolate")]
+        after = results[(name, "extrapolate")]
+        before = f" {cell(results[(name, 'default')])} |" if both else ""
         fz = after.get("Fz_mean")
-        print(f"| `{name}` | {cell(before)} | {cell(after)} | {iterations_cell(after)}"
+        print(f"| `{name}` |{before} {cell(after)} | {iterations_cell(after)}"
               + (f", {abs(fz):.2f}" if fz is not None else "") + " |")
 
 
