@@ -585,6 +585,12 @@ int runCommand(const RunOptions& options) {
                     100 * energy.stabilizationDissipation / std::abs(energy.externalWork),
                     energy.externalWork, energy.strainEnergy));
   }
+  for (const auto& pair : model->contactPairs()) {
+    // A penalty too soft for the mesh fails nothing, it only gives other answers: said here.
+    if (const std::string warning = pair->penetrationWarning(); !warning.empty()) {
+      printOut(warning + "\n");
+    }
+  }
   if (!cost.empty()) printOut(cost);
   if (group.size() > 1 && !options.quiet) {
     printOut(fmt::format(

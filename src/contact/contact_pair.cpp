@@ -352,6 +352,7 @@ void ContactPair::commitStep() {
   gapTime_ = preparedTime_;
   rememberedSearch_.clear();
   forgetChangesInAttempt();
+  watchPenetration();
   // The previous-segment nodes of the items follow the new history.
   for (PairPoint& point : points_) buildItem(point);
   ++topologyVersion_;

@@ -43,6 +43,10 @@ struct ContactPairConfig {
   // gives eps: a penalty below it tightens the stopping rule so that the penetration left is
   // bounded as with this one (0: unknown, the rule uses eps itself).
   double referencePenalty = 0;
+  // The mean depth of the element layer behind the softer surface (the one of lower E/h,
+  // model/automatic_penalty.hpp; 0: unknown): the scale the deepest penetration is measured
+  // against (ContactPair::penetrationWarning).
+  double layerDepth = 0;
   // Smoothed master (issue 16, part 2; NTS/STS with Quad4 masters): search, projection, gap,
   // normal and curvature on Nagata patches (nagata.hpp) over nodal normals taken from the
   // converged configuration at the start of each step and held fixed over it.
@@ -112,6 +116,14 @@ class ContactPair : public Contribution {
 
   // Output of the last evaluated (after commit: converged) state.
   ContactPairRecord record() const;
+
+  // The deepest penetration -g of a point in contact over the converged steps so far, and the
+  // time of the step it was reached in (contact_pair_diagnostics.cpp).
+  double deepestPenetration() const { return deepestPenetration_; }
+  double deepestPenetrationTime() const { return deepestPenetrationTime_; }
+  // A line for the end of a run when that penetration exceeded kPenetrationWarningShare of
+  // ContactPairConfig::layerDepth ("" otherwise, or when the depth is unknown).
+  std::string penetrationWarning() const;
 
   // Augmented Lagrangian (contact_pair_augmentation.cpp): after a converged Newton solve, checks
   // the stopping rule and otherwise updates the multipliers (Uzawa) for another solve.
@@ -213,6 +225,10 @@ class ContactPair : public Contribution {
   double preparedTime_ = 0;
   double gapTime_ = 0;
   double previousGapTime_ = 0;
+  // commitStep(): penetrationWarning()'s record.
+  void watchPenetration();
+  double deepestPenetration_ = 0;
+  double deepestPenetrationTime_ = 0;
   bool holdsClosedAtPrediction(const PointHistory& history, const AssemblyState& state) const;
   bool retryingStep_ = false;  // restored since the last commit: a step's retry holds no point
   bool evaluatedThisPass(const PairPoint& point) const {

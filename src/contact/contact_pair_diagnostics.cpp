@@ -3,12 +3,56 @@
 // set keeps changing is not smooth, and Newton cannot converge quadratically through it
 // (issue 14; `covcontact run --newton-log` prints it per iteration). The signature of the active
 // set lets Newton see the set return to an earlier iteration's (a cycle). Per point, the changes
-// since the last commit or restore name the points that keep a failed solve switching.
+// since the last commit or restore name the points that keep a failed solve switching. The
+// deepest penetration of the converged steps, against the depth of the elements behind the
+// surface, tells a penalty too soft for the mesh.
+#include <fmt/format.h>
+
 #include <algorithm>
 
 #include "contact/contact_pair.hpp"
 
 namespace cc::contact {
+
+namespace {
+
+// A penetration beyond this share of the element layer's depth is reported. The automatic
+// penalty aims at about a tenth (model/automatic_penalty.hpp; ANSYS's default penetration
+// tolerance is also a tenth of the underlying element's depth). On the ironing slab refined
+// 1.5 times at the decks' eps = 20 the penetration at its free side edges reached a third of
+// the depth and those elements folded, the die force 14 % low; the decks' own mesh reaches
+// 17 % and runs well (docs/verification/sliding.md, report).
+constexpr double kPenetrationWarningShare = 0.25;
+
+}  // namespace
+
+void ContactPair::watchPenetration() {
+  for (const PairPoint& point : points_) {
+    const PointHistory& history = point.committed;
+    if (history.state == ContactState::Open || history.gap == kNoGap) continue;
+    if (-history.gap > deepestPenetration_) {
+      deepestPenetration_ = -history.gap;
+      deepestPenetrationTime_ = gapTime_;
+    }
+  }
+}
+
+std::string ContactPair::penetrationWarning() const {
+  const double depth = config_.layerDepth;
+  if (!(depth > 0) || deepestPenetration_ <= kPenetrationWarningShare * depth) return {};
+  const std::string automatic =
+      config_.referencePenalty > 0
+          ? fmt::format(" (the automatic penalty for this mesh, 10 E/h: {:.3g})",
+                        config_.referencePenalty)
+          : "";
+  return fmt::format(
+      "contact '{}': the penetration reached {:.3g} at t = {:.6g}, {:.0f} % of the depth of the "
+      "elements behind the softer surface ({:.3g}); a penalty this soft for the mesh changes "
+      "the results and can fold the elements at the contact's edges: raise eps_n and eps_t{} "
+      "or use enforcement=augmented",
+      config_.name, deepestPenetration_, deepestPenetrationTime_, 100 * deepestPenetration_ / depth,
+      depth, automatic);
+}
 
 ContactChanges ContactPair::takeChanges() {
   countedState_.resize(points_.size(), ContactState::Open);

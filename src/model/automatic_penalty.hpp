@@ -24,5 +24,8 @@ inline constexpr double kAutomaticPenaltyFactor = 10.0;
 // blocks without elements: their faces are skipped). NaN if no face has a declared element.
 double surfaceStiffness(const Mesh& mesh, const FaceSet& faces,
                         const std::vector<double>& blockYoung);
+// Mean h over the same faces (NaN if none): the depth of the element layer behind the surface.
+double surfaceLayerDepth(const Mesh& mesh, const FaceSet& faces,
+                         const std::vector<double>& blockYoung);
 
 }  // namespace cc

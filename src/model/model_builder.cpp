@@ -218,12 +218,20 @@ void setAutomaticPenalty(const ContactSpec& spec, const Mesh& mesh,
                          contact::ContactPairConfig& config) {
   const bool normal = spec.penaltyNormal == 0;
   const bool tangential = spec.friction > 0 && spec.penaltyTangential == 0;
-  double stiffness = surfaceStiffness(mesh, mesh.faceSets.at(spec.master), blockYoung);
+  const FaceSet& master = mesh.faceSets.at(spec.master);
+  double stiffness = surfaceStiffness(mesh, master, blockYoung);
+  double depth = surfaceLayerDepth(mesh, master, blockYoung);
   if (spec.kind != ContactSpec::Kind::SegmentToAnalytical) {
-    stiffness =
-        std::min(stiffness, surfaceStiffness(mesh, mesh.faceSets.at(spec.slave), blockYoung));
+    const FaceSet& slave = mesh.faceSets.at(spec.slave);
+    // The softer side's (as std::min: a master without elements behind it stays unknown).
+    if (const double slaveStiffness = surfaceStiffness(mesh, slave, blockYoung);
+        slaveStiffness < stiffness) {
+      stiffness = slaveStiffness;
+      depth = surfaceLayerDepth(mesh, slave, blockYoung);
+    }
   }
   const bool known = std::isfinite(stiffness) && stiffness > 0;
+  config.layerDepth = known && std::isfinite(depth) ? depth : 0.0;
   // Known for every pair, whatever eps the deck gives (unknown: 0): the augmented Lagrangian's
   // stopping rule measures penetration against it (contact_pair_augmentation.cpp), and a penalty
   // far above it is approached by continuation within each step (solver/load_stepper.cpp).

@@ -3,6 +3,7 @@
 // back, slave points exactly on master vertices and edges, initially penetrating and initially
 // separated bodies, contact lost and regained. Each is checked against a closed form, a
 // symmetry, or a path-independent state of the same run.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -160,6 +161,38 @@ TEST(SlaveOnMasterEdges, GaussPointsOnSharedAndBoundaryEdgesGiveAMirrorSymmetric
   // The force on the base (slave) is the block's top reaction passed through it.
   EXPECT_NEAR(pair.totalForce.y(), reaction(run, "block_top").y(), 1e-9 * pair.totalForce.norm());
   EXPECT_LT(std::abs(pair.totalForce.x()), 1e-6 * pair.totalForce.norm());
+}
+
+// A penalty too soft for the mesh (ContactPair::penetrationWarning): the NTS stack of
+// slave_on_master_vertices.deck shortened by 1.0 at eps_N = 2.1e3, a tenth of E/h. The
+// deepest penetration must be the closed form's gap, at the last step, measured against the
+// block's elements (5/3 deep, E/h = 1.26e4: the softer side; the base's are 1 deep): 36 % of
+// it, above the quarter that is reported. At the deck's eps_N = 2.1e6 it is 0.1 % and nothing
+// is said.
+TEST(SoftPenalty, ThePenetrationAgainstTheElementDepthIsReportedAtTheEnd) {
+  std::string deck = readText(stressDeck("slave_on_master_vertices"));
+  deck = replaceOnce(deck, "\"-7e-3*t\"", "\"-1.0*t\"");
+  deck = replaceOnce(deck, "eps_n=2.1e6", "eps_n=2.1e3");
+  deck = replaceOnce(deck, "steps 1 dt=1", "steps 4 dt=0.25");
+  const DeckRun soft = runStressText(deck, "slave_on_master_vertices");
+  ASSERT_EQ(soft.summary.outcome, RunSummary::Outcome::Completed) << soft.summary.message;
+  const contact::ContactPair& pair = *soft.model->contactPairs()[0];
+  const StackSolution exact = compressedStack(2.1e4, 6.0, 10.0, 2.1e3, 1.0);
+  EXPECT_NEAR(pair.deepestPenetration(), -exact.gap, 1e-9 * std::abs(exact.gap));
+  EXPECT_EQ(pair.deepestPenetrationTime(), 1.0);
+  EXPECT_NEAR(pair.config().layerDepth, 5.0 / 3.0, 1e-10);  // gmsh writes 1e-12 round-off
+  const std::string warning = pair.penetrationWarning();
+  EXPECT_NE(warning.find(fmt::format("the penetration reached {:.3g} at t = 1, {:.0f} % of the "
+                                     "depth of the elements behind the softer surface (1.67)",
+                                     -exact.gap, -100 * exact.gap / (5.0 / 3.0))),
+            std::string::npos)
+      << warning;
+  EXPECT_NE(warning.find("automatic penalty for this mesh, 10 E/h: 1.26e+05"), std::string::npos)
+      << warning;
+
+  const DeckRun stiff = runStressDeck("slave_on_master_vertices");
+  EXPECT_EQ(stiff.model->contactPairs()[0]->penetrationWarning(), "");
+  EXPECT_GT(stiff.model->contactPairs()[0]->deepestPenetration(), 0.0);
 }
 
 TEST(InitialGap, PenetratingBodiesArePushedApartIntoTheClosedFormState) {
