@@ -552,11 +552,19 @@ int runCommand(const RunOptions& options) {
       options.cost ? costLine(*model, work, summary.totalIterations + summary.discardedIterations,
                               seconds, group)
                    : std::string();
+  // A penalty too soft for the mesh fails nothing, it only gives other answers: said at the end
+  // and kept in /summary.
+  std::string warnings;
+  for (const auto& pair : model->contactPairs()) {
+    if (const std::string warning = pair->penetrationWarning(); !warning.empty()) {
+      warnings += warning + "\n";
+    }
+  }
   writer.close({outcomeName(summary.outcome), summary.stepsConverged, summary.totalIterations,
                 summary.totalCutbacks, rankZeroValue(group, seconds), summary.message,
                 observer.linearSolver(), work.linear.krylovIterations, work.linear.krylovFallbacks,
-                summary.lineSearchRetries, summary.discardedIterations,
-                summary.continuationRetries});
+                summary.lineSearchRetries, summary.discardedIterations, summary.continuationRetries,
+                warnings});
   if (!writes) return exitCodeOf(summary.outcome);
   if (summary.outcome == RunSummary::Outcome::Completed) {
     // The work of failed attempts (retried with line search or cut back) is not in the
@@ -585,12 +593,7 @@ int runCommand(const RunOptions& options) {
                     100 * energy.stabilizationDissipation / std::abs(energy.externalWork),
                     energy.externalWork, energy.strainEnergy));
   }
-  for (const auto& pair : model->contactPairs()) {
-    // A penalty too soft for the mesh fails nothing, it only gives other answers: said here.
-    if (const std::string warning = pair->penetrationWarning(); !warning.empty()) {
-      printOut(warning + "\n");
-    }
-  }
+  if (!warnings.empty()) printOut(warnings);
   if (!cost.empty()) printOut(cost);
   if (group.size() > 1 && !options.quiet) {
     printOut(fmt::format(

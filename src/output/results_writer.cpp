@@ -467,6 +467,7 @@ void ResultsWriter::close(const RunTotals& totals) {
     h5::writeAttribute(file, summary.get(), "continuation_retries", totals.continuationRetries);
     h5::writeAttribute(file, summary.get(), "wall_seconds", totals.wallSeconds);
     h5::writeAttribute(file, summary.get(), "message", totals.message);
+    h5::writeAttribute(file, summary.get(), "warnings", totals.warnings);
     h5::writeAttribute(file, summary.get(), "linear_solver", totals.linearSolver);
     h5::writeAttribute(file, summary.get(), "krylov_iterations",
                        static_cast<int>(totals.krylovIterations));

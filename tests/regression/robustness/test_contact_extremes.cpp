@@ -7,8 +7,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 #include <iostream>
 
+#include "output/results_reader.hpp"
 #include "stress_support.hpp"
 
 namespace cc::test {
@@ -193,6 +195,25 @@ TEST(SoftPenalty, ThePenetrationAgainstTheElementDepthIsReportedAtTheEnd) {
   const DeckRun stiff = runStressDeck("slave_on_master_vertices");
   EXPECT_EQ(stiff.model->contactPairs()[0]->penetrationWarning(), "");
   EXPECT_GT(stiff.model->contactPairs()[0]->deepestPenetration(), 0.0);
+}
+
+// The same line on the command line: printed at the end of the run and kept in the results
+// file's /summary (attribute warnings), so that a script reading results can see it.
+TEST(SoftPenalty, TheLineIsPrintedAndKeptInTheResultsFile) {
+  std::string deck = readText(stressDeck("slave_on_master_vertices"));
+  deck = replaceOnce(deck, "\"-7e-3*t\"", "\"-1.0*t\"");
+  deck = replaceOnce(deck, "eps_n=2.1e6", "eps_n=2.1e3");
+  deck = replaceOnce(deck, "steps 1 dt=1", "steps 4 dt=0.25");
+  deck =
+      replaceOnce(deck, "\"../../meshes/", "\"" + std::string(COVCONTACT_SOURCE_DIR) + "/meshes/");
+  const std::string directory = scratchDirectory("soft_penalty");
+  std::ofstream(directory + "/soft.deck") << deck;
+  const CommandResult run = runCovcontact("run -q --threads 1 soft.deck -o soft.h5", directory);
+  ASSERT_EQ(run.exitCode, 0) << run.error;
+  const std::size_t at = run.output.find("contact 'vertices': the penetration reached ");
+  ASSERT_NE(at, std::string::npos) << run.output;
+  const std::string line = run.output.substr(at, run.output.find('\n', at) + 1 - at);
+  EXPECT_EQ(ResultsReader(directory + "/soft.h5").stringAttribute("/summary", "warnings"), line);
 }
 
 TEST(InitialGap, PenetratingBodiesArePushedApartIntoTheClosedFormState) {
