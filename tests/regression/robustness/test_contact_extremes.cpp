@@ -166,11 +166,11 @@ TEST(SlaveOnMasterEdges, GaussPointsOnSharedAndBoundaryEdgesGiveAMirrorSymmetric
 }
 
 // A penalty too soft for the mesh (ContactPair::penetrationWarning): the NTS stack of
-// slave_on_master_vertices.deck shortened by 1.0 at eps_N = 2.1e3, a tenth of E/h. The
-// deepest penetration must be the closed form's gap, at the last step, measured against the
-// block's elements (5/3 deep, E/h = 1.26e4: the softer side; the base's are 1 deep): 36 % of
-// it, above the quarter that is reported. At the deck's eps_N = 2.1e6 it is 0.1 % and nothing
-// is said.
+// slave_on_master_vertices.deck shortened by 1.0 at eps_N = 2.1e3, a sixtieth of the automatic
+// penalty 10 E/h = 1.26e5. The deepest penetration must be the closed form's gap (0.60), at the
+// last step, measured against the block's elements (5/3 deep, E/h = 1.26e4: the softer side;
+// the base's are 1 deep): 36 % of it, above the quarter that is reported. At the deck's
+// eps_N = 2.1e6 it is 7e-6 of the depth and nothing is said.
 TEST(SoftPenalty, ThePenetrationAgainstTheElementDepthIsReportedAtTheEnd) {
   std::string deck = readText(stressDeck("slave_on_master_vertices"));
   deck = replaceOnce(deck, "\"-7e-3*t\"", "\"-1.0*t\"");
