@@ -18,6 +18,11 @@ std::array<int, 8> cornerColumns(Eigen::Index nodes) {
                          std::to_string(nodes) + " nodes");
 }
 
+// k = (C / dt) V / n: the viscous coefficient of each node's equal share of the element.
+double nodalViscosity(const Eigen::Matrix3Xd& reference, double factorPerTime) {
+  return factorPerTime * hexahedronVolume(reference) / static_cast<double>(reference.cols());
+}
+
 }  // namespace
 
 double hexahedronVolume(const Eigen::Matrix3Xd& reference) {
@@ -51,9 +56,8 @@ double hexahedronVolume(const Eigen::Matrix3Xd& reference) {
 void addViscousForces(const Eigen::Matrix3Xd& reference, const Eigen::Matrix3Xd& current,
                       const Eigen::Matrix3Xd& previous, double factorPerTime,
                       Eigen::VectorXd& force, Eigen::MatrixXd* tangent) {
-  const Eigen::Index nodes = reference.cols();
-  const double k = factorPerTime * hexahedronVolume(reference) / static_cast<double>(nodes);
-  for (Eigen::Index a = 0; a < nodes; ++a) {
+  const double k = nodalViscosity(reference, factorPerTime);
+  for (Eigen::Index a = 0; a < reference.cols(); ++a) {
     force.segment<3>(3 * a) += k * (current.col(a) - previous.col(a));
   }
   if (tangent) tangent->diagonal().array() += k;
@@ -61,9 +65,7 @@ void addViscousForces(const Eigen::Matrix3Xd& reference, const Eigen::Matrix3Xd&
 
 double viscousWork(const Eigen::Matrix3Xd& reference, const Eigen::Matrix3Xd& current,
                    const Eigen::Matrix3Xd& previous, double factorPerTime) {
-  const double k =
-      factorPerTime * hexahedronVolume(reference) / static_cast<double>(reference.cols());
-  return k * (current - previous).squaredNorm();
+  return nodalViscosity(reference, factorPerTime) * (current - previous).squaredNorm();
 }
 
 }  // namespace cc

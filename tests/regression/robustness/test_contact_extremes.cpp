@@ -171,12 +171,15 @@ TEST(SlaveOnMasterEdges, GaussPointsOnSharedAndBoundaryEdgesGiveAMirrorSymmetric
 // last step, measured against the block's elements (5/3 deep, E/h = 1.26e4: the softer side;
 // the base's are 1 deep): 36 % of it, above the quarter that is reported. At the deck's
 // eps_N = 2.1e6 it is 7e-6 of the depth and nothing is said.
-TEST(SoftPenalty, ThePenetrationAgainstTheElementDepthIsReportedAtTheEnd) {
+std::string softStackDeck() {
   std::string deck = readText(stressDeck("slave_on_master_vertices"));
   deck = replaceOnce(deck, "\"-7e-3*t\"", "\"-1.0*t\"");
   deck = replaceOnce(deck, "eps_n=2.1e6", "eps_n=2.1e3");
-  deck = replaceOnce(deck, "steps 1 dt=1", "steps 4 dt=0.25");
-  const DeckRun soft = runStressText(deck, "slave_on_master_vertices");
+  return replaceOnce(deck, "steps 1 dt=1", "steps 4 dt=0.25");
+}
+
+TEST(SoftPenalty, ThePenetrationAgainstTheElementDepthIsReportedAtTheEnd) {
+  const DeckRun soft = runStressText(softStackDeck(), "slave_on_master_vertices");
   ASSERT_EQ(soft.summary.outcome, RunSummary::Outcome::Completed) << soft.summary.message;
   const contact::ContactPair& pair = *soft.model->contactPairs()[0];
   const StackSolution exact = compressedStack(2.1e4, 6.0, 10.0, 2.1e3, 1.0);
@@ -200,12 +203,8 @@ TEST(SoftPenalty, ThePenetrationAgainstTheElementDepthIsReportedAtTheEnd) {
 // The same line on the command line: printed at the end of the run and kept in the results
 // file's /summary (attribute warnings), so that a script reading results can see it.
 TEST(SoftPenalty, TheLineIsPrintedAndKeptInTheResultsFile) {
-  std::string deck = readText(stressDeck("slave_on_master_vertices"));
-  deck = replaceOnce(deck, "\"-7e-3*t\"", "\"-1.0*t\"");
-  deck = replaceOnce(deck, "eps_n=2.1e6", "eps_n=2.1e3");
-  deck = replaceOnce(deck, "steps 1 dt=1", "steps 4 dt=0.25");
-  deck =
-      replaceOnce(deck, "\"../../meshes/", "\"" + std::string(COVCONTACT_SOURCE_DIR) + "/meshes/");
+  const std::string deck = replaceOnce(softStackDeck(), "\"../../meshes/",
+                                       "\"" + std::string(COVCONTACT_SOURCE_DIR) + "/meshes/");
   const std::string directory = scratchDirectory("soft_penalty");
   std::ofstream(directory + "/soft.deck") << deck;
   const CommandResult run = runCovcontact("run -q --threads 1 soft.deck -o soft.h5", directory);
