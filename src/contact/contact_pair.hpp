@@ -150,7 +150,7 @@ class ContactPair : public Contribution {
   // Restart (contact_pair_history.cpp): the committed history of every point and the search
   // state it continues from, one column of kHistoryRows numbers per point, and its
   // restoration. importHistory throws std::invalid_argument if the table does not fit the pair.
-  static constexpr int kHistoryRows = 27;
+  static constexpr int kHistoryRows = 29;
   Eigen::MatrixXd exportHistory() const;
   void importHistory(const Eigen::MatrixXd& table);
   const ContactPairConfig& config() const { return config_; }
@@ -168,8 +168,9 @@ class ContactPair : public Contribution {
   ContactPair(ContactPairConfig config, const FaceSet& master, std::vector<PairPoint> points);
   const MasterSurface& master() const { return tracker_.master(); }
   void buildItem(PairPoint& point) const;
-  void forgetChangesInAttempt();                          // contact_pair_diagnostics.cpp
-  void importAugmentation(const Eigen::MatrixXd& table);  // contact_pair_history.cpp
+  void forgetChangesInAttempt();                                // contact_pair_diagnostics.cpp
+  void importAugmentation(const Eigen::MatrixXd& table);        // contact_pair_history.cpp
+  void importDeepestPenetration(const Eigen::MatrixXd& table);  // contact_pair_history.cpp
   // The search tracking of NTS/STS points; rebuilds the items of the points that moved.
   LocalStatus searchSegments(const Eigen::Matrix3Xd& x, double time);
   // Table 1, step 1: the projections in the initial configuration start the history.

@@ -40,9 +40,16 @@ enum HistoryRow : int {
   kPreviousGap = 24,
   kGapTime = 25,
   kPreviousGapTime = 26,
-  kRowCount = 27,
+  // The deepest penetration of the converged steps and its time (the same in every column), so
+  // that a continued run's warning (ContactPair::penetrationWarning) covers the steps before the
+  // restart. Tables written before these rows existed have kRowCountBeforePenetration rows: the
+  // watch starts again at the restart.
+  kDeepestPenetration = 27,
+  kDeepestPenetrationTime = 28,
+  kRowCount = 29,
   kLegacyRowCount = 20,
   kRowCountBeforeGaps = 23,
+  kRowCountBeforePenetration = 27,
 };
 static_assert(kRowCount == ContactPair::kHistoryRows);
 
@@ -82,6 +89,8 @@ Eigen::MatrixXd ContactPair::exportHistory() const {
     column[kPreviousGap] = h.previousGap;
     column[kGapTime] = gapTime_;
     column[kPreviousGapTime] = previousGapTime_;
+    column[kDeepestPenetration] = deepestPenetration_;
+    column[kDeepestPenetrationTime] = deepestPenetrationTime_;
   }
   return table;
 }
@@ -96,7 +105,8 @@ void ContactPair::importHistory(const Eigen::MatrixXd& table) {
         config_.name));
   }
   const bool legacy = table.rows() == kLegacyRowCount;
-  const bool withGaps = table.rows() == kHistoryRows;
+  const bool withPenetration = table.rows() == kHistoryRows;
+  const bool withGaps = withPenetration || table.rows() == kRowCountBeforePenetration;
   if ((!withGaps && !legacy && table.rows() != kRowCountBeforeGaps) ||
       table.cols() != pointCount()) {
     throw std::invalid_argument(fmt::format(
@@ -139,11 +149,26 @@ void ContactPair::importHistory(const Eigen::MatrixXd& table) {
   }
   gapTime_ = withGaps && pointCount() > 0 ? table(kGapTime, 0) : 0.0;
   previousGapTime_ = withGaps && pointCount() > 0 ? table(kPreviousGapTime, 0) : 0.0;
+  importDeepestPenetration(withPenetration ? table : Eigen::MatrixXd());
   // The history replaces the initial projection (Table 1, step 1), and the search grid and the
   // item topology follow the restored segments.
   historyInitialized_ = true;
   tracker_.invalidateGrid();
   ++topologyVersion_;
+}
+
+// The rows of the penetration watch (an empty table: none stored, the watch starts afresh).
+void ContactPair::importDeepestPenetration(const Eigen::MatrixXd& table) {
+  deepestPenetration_ = deepestPenetrationTime_ = 0;
+  if (table.cols() == 0) return;
+  const double depth = table(kDeepestPenetration, 0), time = table(kDeepestPenetrationTime, 0);
+  if (!(depth >= 0) || !std::isfinite(depth) || !std::isfinite(time)) {
+    throw std::invalid_argument(
+        fmt::format("contact pair '{}': invalid deepest penetration {} at t = {} in the history",
+                    config_.name, depth, time));
+  }
+  deepestPenetration_ = depth;
+  deepestPenetrationTime_ = time;
 }
 
 // The rows of the augmented Lagrangian (kMultiplierNormal ...): a restarted run continues with the

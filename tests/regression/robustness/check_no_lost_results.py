@@ -37,7 +37,7 @@ import numpy as np
 RESTART_DECK = "restart_6_1.deck"
 CUTBACK_DECK = "cutback_equivalence.deck"
 PLANNED_STEPS = 41
-HISTORY_ROWS = 27  # ContactPair::kHistoryRows
+HISTORY_ROWS = 29  # ContactPair::kHistoryRows
 # Longest time one command may take on a loaded 2-core machine.
 COMMAND_TIMEOUT_S = 120
 # The continued run repeats the same arithmetic; 1e-10 leaves room for nothing but round-off.

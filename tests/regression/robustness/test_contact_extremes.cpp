@@ -215,6 +215,29 @@ TEST(SoftPenalty, TheLineIsPrintedAndKeptInTheResultsFile) {
   EXPECT_EQ(ResultsReader(directory + "/soft.h5").stringAttribute("/summary", "warnings"), line);
 }
 
+// The deepest penetration is restart data: the stack pressed to t = 1 and released to t = 1.75,
+// continued from step 5 (t = 1.25, past the deepest state), must end with the uninterrupted run's
+// line, which names t = 1. A watch that started again at the restart sees only t = 1.5 and 1.75
+// (shortenings of 0.5 and 0.25, below the quarter of the depth) and says nothing (checked).
+TEST(SoftPenalty, ARunContinuedPastTheDeepestStateReportsIt) {
+  std::string deck = replaceOnce(softStackDeck(), "\"../../meshes/",
+                                 "\"" + std::string(COVCONTACT_SOURCE_DIR) + "/meshes/");
+  deck = replaceOnce(deck, "\"-1.0*t\"", "\"-1.0*min(t,2-t)\"");
+  deck = replaceOnce(deck, "steps 4 dt=0.25", "steps 7 dt=0.25");
+  const std::string directory = scratchDirectory("soft_penalty_restart");
+  std::ofstream(directory + "/soft.deck") << deck;
+  const CommandResult full = runCovcontact("run -q --threads 1 soft.deck -o full.h5", directory);
+  ASSERT_EQ(full.exitCode, 0) << full.error;
+  const CommandResult continued = runCovcontact(
+      "run -q --threads 1 soft.deck --restart full.h5 --from-step 5 -o continued.h5", directory);
+  ASSERT_EQ(continued.exitCode, 0) << continued.error;
+  const std::string expected =
+      ResultsReader(directory + "/full.h5").stringAttribute("/summary", "warnings");
+  EXPECT_NE(expected.find(" at t = 1, "), std::string::npos) << expected;
+  EXPECT_EQ(ResultsReader(directory + "/continued.h5").stringAttribute("/summary", "warnings"),
+            expected);
+}
+
 TEST(InitialGap, PenetratingBodiesArePushedApartIntoTheClosedFormState) {
   const DeckRun run = runStressDeck("initially_penetrating");
   ASSERT_EQ(run.summary.outcome, RunSummary::Outcome::Completed) << run.summary.message;

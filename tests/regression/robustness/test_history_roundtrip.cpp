@@ -157,7 +157,14 @@ TEST(History, AHistoryThatDoesNotFitTheModelIsRefusedWithItsName) {
   RestartRecord badMultiplier = history;
   badMultiplier.contactHistory[0].second(20, 0) = 1.0;  // row 20: a normal multiplier, <= 0
   EXPECT_THROW(model->restoreHistory(badMultiplier), std::invalid_argument);
-  // Restart data written before the multiplier and penalty rows (20 rows) still continue.
+  RestartRecord badPenetration = history;
+  badPenetration.contactHistory[0].second(27, 0) = -1.0;  // row 27: the deepest penetration
+  EXPECT_THROW(model->restoreHistory(badPenetration), std::invalid_argument);
+  // Restart data written before the penetration rows (27 rows), and before the multiplier and
+  // penalty rows (20 rows), still continue.
+  RestartRecord beforePenetration = history;
+  beforePenetration.contactHistory[0].second.conservativeResize(27, Eigen::NoChange);
+  EXPECT_NO_THROW(model->restoreHistory(beforePenetration));
   RestartRecord legacy = history;
   legacy.contactHistory[0].second.conservativeResize(20, Eigen::NoChange);
   EXPECT_NO_THROW(model->restoreHistory(legacy));
