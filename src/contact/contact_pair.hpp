@@ -104,6 +104,10 @@ class ContactPair : public Contribution {
   // contact (contact_pair_diagnostics.cpp; Newton logs it per iteration). Only the points
   // evaluated since the last prepare() count (all of them in a serial run).
   ContactChanges takeChanges();
+  // The points in contact on another master segment than at the last takeChanges(), not
+  // counted as changes: the master edges a trial evaluation off an iterate (the line search's)
+  // crossed. Only the points evaluated since the last prepare() count.
+  PendingCrossings pendingCrossings() const;
   // How often each point changed its state (open/stick/slip) and, in contact, its master
   // segment in the calls of takeChanges() since the last commit or restore: the points a
   // stalled Newton solve keeps switching (issue 14), which its failure message names. Only the

@@ -3,7 +3,8 @@
 // set keeps changing is not smooth, and Newton cannot converge quadratically through it
 // (issue 14; `covcontact run --newton-log` prints it per iteration). The signature of the active
 // set lets Newton see the set return to an earlier iteration's (a cycle). Per point, the changes
-// since the last commit or restore name the points that keep a failed solve switching. The
+// since the last commit or restore name the points that keep a failed solve switching, and tell
+// a line-search trial's first crossings of master edges from crossings back (hops). The
 // deepest penetration of the converged steps, against the depth of the elements behind the
 // surface, tells a penalty too soft for the mesh.
 #include <fmt/format.h>
@@ -87,6 +88,18 @@ ContactChanges ContactPair::takeChanges() {
     countedSegment_[i] = segment;
   }
   return changes;
+}
+
+PendingCrossings ContactPair::pendingCrossings() const {
+  PendingCrossings pending;
+  for (std::size_t i = 0; i < points_.size() && i < countedSegment_.size(); ++i) {
+    const PairPoint& point = points_[i];
+    if (!evaluatedThisPass(point) || !point.trial.valid) continue;
+    if (point.trial.state == ContactState::Open || countedSegment_[i] < 0) continue;
+    if (point.segment == countedSegment_[i]) continue;
+    ++(segmentChangesInAttempt_[i] == 0 ? pending.first : pending.repeated);
+  }
+  return pending;
 }
 
 void ContactPair::forgetChangesInAttempt() {

@@ -109,6 +109,15 @@ void Model::commitStep() {
   }
 }
 
+PendingCrossings Model::pendingContactCrossings() {
+  PendingCrossings pending;
+  for (const auto& pair : contactPairs_) pending += pair->pendingCrossings();
+  if (!group_) return pending;
+  double counts[2] = {double(pending.first), double(pending.repeated)};
+  group_->sum(counts, 2);
+  return {static_cast<int>(counts[0]), static_cast<int>(counts[1])};
+}
+
 ContactChanges Model::takeContactChanges() {
   ContactChanges changes;
   for (auto& pair : contactPairs_) changes += pair->takeChanges();

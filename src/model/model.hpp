@@ -47,6 +47,7 @@ class Model : public NonlinearProblem {
   std::vector<BodyNodes> bodies() const override;
   std::string nodeLabel(int node) const override;
   ContactChanges takeContactChanges() override;
+  PendingCrossings pendingContactCrossings() override;
   std::string describeSwitchingContact() override;
   void sumOverProcesses(Eigen::VectorXd& values) override;
   std::vector<int> nodeOwners() const override { return nodeOwner_; }

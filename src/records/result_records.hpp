@@ -111,6 +111,18 @@ struct ContactChanges {
   }
 };
 
+// Contact points that a trial evaluation off a Newton iterate (the line search's) put on
+// another master segment than the iterate had: crossing for the first time in this attempt of
+// the step, or again (a point that crossed before: back over an edge, a hop).
+struct PendingCrossings {
+  int first = 0;
+  int repeated = 0;
+  PendingCrossings& operator+=(const PendingCrossings& other) {
+    first += other.first, repeated += other.repeated;
+    return *this;
+  }
+};
+
 struct IterationRecord {
   int step = 0;       // the step being solved (1-based, as it will be numbered if it converges)
   int attempt = 0;    // 0 for the first try, k after k cut-backs of this step

@@ -164,7 +164,8 @@ void Newton::addToFree(Eigen::VectorXd& displacement, const Eigen::VectorXd& du,
 }
 
 double Newton::lineSearch(const NewtonStep& step, const Eigen::VectorXd& du,
-                          const Eigen::VectorXd& rhs, Eigen::VectorXd& displacement) {
+                          const Eigen::VectorXd& rhs, Eigen::VectorXd& displacement,
+                          double largestResidual) {
   const double initialResidual = rhs.norm();  // ||R(u)||, R = -rhs (linearized in iteration 1)
   double bestFraction = 1, bestResidual = std::numeric_limits<double>::infinity();
   double fraction = 1, lastTried = 1;
@@ -182,7 +183,17 @@ double Newton::lineSearch(const NewtonStep& step, const Eigen::VectorXd& du,
     }
     if (!std::isfinite(residual)) residual = std::numeric_limits<double>::infinity();
     if (residual < bestResidual) bestResidual = residual, bestFraction = fraction;
-    if (residual <= (1 - kLineSearchDecrease * fraction) * initialResidual) break;
+    // A trial over master edges that no point has crossed before in this attempt is measured
+    // against the attempt's largest residual (newton.hpp, kLineSearchDecrease).
+    PendingCrossings crossings;
+    if (std::isfinite(residual)) crossings = problem_.pendingContactCrossings();
+    const bool firstCrossings = crossings.first > 0 && crossings.repeated == 0;
+    const double reference =
+        firstCrossings ? std::max(initialResidual, largestResidual) : initialResidual;
+    if (residual <= (1 - kLineSearchDecrease * fraction) * reference) {
+      if (reference > initialResidual) bestFraction = fraction;  // this trial, over the edges
+      break;
+    }
   }
   if (bestFraction != lastTried) {
     // Leave the contributions (and internalForce_) evaluated at the accepted point.
@@ -455,7 +466,10 @@ NewtonResult Newton::solve(const NewtonStep& step, const NewtonSpec& spec,
       firstEnergy_ = norms.firstEnergy;
     }
     if (iteration == 1) applyPrescribed();
-    const double fraction = spec.lineSearch ? lineSearch(step, du, rhs, displacement) : 1.0;
+    const double largestResidual =
+        *std::max_element(residualHistory.begin(), residualHistory.end());
+    const double fraction =
+        spec.lineSearch ? lineSearch(step, du, rhs, displacement, largestResidual) : 1.0;
     addToFree(displacement, du, fraction);
 
     observer_.iteration({step.step, step.attempt, iteration, step.time, norms.residual,

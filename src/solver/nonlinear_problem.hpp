@@ -73,6 +73,9 @@ class NonlinearProblem {
   virtual std::string nodeLabel(int node) const { return "node " + std::to_string(node); }
   // Contact points that changed state or master segment since the last call (diagnostics).
   virtual ContactChanges takeContactChanges() { return {}; }
+  // The contact points on another master segment than at the last takeContactChanges(), not
+  // counted as changes (the line search's trials). Collective on several processes.
+  virtual PendingCrossings pendingContactCrossings() { return {}; }
   // The contact points that changed state or master segment most often in this attempt of the
   // step, by name and count, for the message of a solve that failed (empty: none kept
   // changing). Collective on several processes, like every failure decision of Newton.

@@ -43,15 +43,21 @@ def ironing_deck_text(args, name, folder="ironing"):
     return source.replace('"../../../meshes/', '"' + meshes + "/")
 
 
-def run_ironing_steps(args, name, steps, must_contain=(), folder="ironing", may_fail=False):
+def run_ironing_steps(args, name, steps, must_contain=(), folder="ironing", may_fail=False,
+                      newton="", label=""):
     """Runs input/stress/FOLDER/NAME (100 steps of dt = 0.01) cut to its first `steps` steps,
     one thread, with --newton-log, in the scratch folder; checks that the deck says each of
     `must_contain`, exits with the run's output if it fails (unless `may_fail`: a script that
-    checks a failure itself), and returns the CompletedProcess."""
+    checks a failure itself), and returns the CompletedProcess. `newton` (e.g.
+    "line_search=yes") adds a `newton` line to the solution control; `label` tells such a
+    variant's files apart (<deck>_<steps><label>.h5, ..._reactions.csv)."""
     source = ironing_deck_text(args, name, folder)
     for text in ("steps 100 dt=0.01",) + tuple(must_contain):
         assert text in source, f"{name} no longer says {text!r}"
-    stem = f"{os.path.splitext(name)[0]}_{steps}"
+    if newton:
+        source = re.sub(r"^solve(.*)$", rf"solve\1\n  newton {newton}", source, count=1,
+                        flags=re.M)
+    stem = f"{os.path.splitext(name)[0]}_{steps}{label}"
     deck = os.path.join(args.scratch, stem + ".deck")
     open(deck, "w").write(source.replace("steps 100 dt=0.01", f"steps {steps} dt=0.01"))
     r = subprocess.run([args.covcontact, "run", "--threads", "1", "--newton-log", deck, "-o",
