@@ -183,16 +183,17 @@ double Newton::lineSearch(const NewtonStep& step, const Eigen::VectorXd& du,
     }
     if (!std::isfinite(residual)) residual = std::numeric_limits<double>::infinity();
     if (residual < bestResidual) bestResidual = residual, bestFraction = fraction;
+    const double decrease = 1 - kLineSearchDecrease * fraction;
+    if (residual <= decrease * initialResidual) break;
     // A trial over master edges that no point has crossed before in this attempt is measured
-    // against the attempt's largest residual (newton.hpp, kLineSearchDecrease).
-    PendingCrossings crossings;
-    if (std::isfinite(residual)) crossings = problem_.pendingContactCrossings();
-    const bool firstCrossings = crossings.first > 0 && crossings.repeated == 0;
-    const double reference =
-        firstCrossings ? std::max(initialResidual, largestResidual) : initialResidual;
-    if (residual <= (1 - kLineSearchDecrease * fraction) * reference) {
-      if (reference > initialResidual) bestFraction = fraction;  // this trial, over the edges
-      break;
+    // against the attempt's largest residual (newton.hpp, kLineSearchDecrease): this trial,
+    // even if an earlier one had a smaller residual.
+    if (residual <= decrease * largestResidual) {
+      const PendingCrossings crossings = problem_.pendingContactCrossings();
+      if (crossings.first > 0 && crossings.repeated == 0) {
+        bestFraction = fraction;
+        break;
+      }
     }
   }
   if (bestFraction != lastTried) {
