@@ -19,6 +19,11 @@
   `stabilize_share=0.01`, whose factor each process chooses from the replicated state) on 2
   processes: the serial run's steps, iterations and forces, and its energy account with the
   stabilisation's work (each process adds the viscous forces of the elements it owns).
+--case facets: the faceted ironing die (input/stress/ironing/ironing_sts_mu03_wide.deck, 30
+  steps) with `predictor=extrapolate line_search=yes` on 2 processes: the serial run's steps,
+  iterations and forces. Its line search measures trials over facet edges against the attempt's
+  largest residual (newton.hpp), a decision from crossing counts summed over the processes; in
+  these steps it is taken 4 times (steps 23 and 24).
 --case repeat: decks/repeatable_amg.deck (20 k equations) three times on 2 processes with
   GMRES + BoomerAMG: the same Krylov and Newton iterations and residual history, bit for bit,
   and the same displacements (users compare iteration counts between runs).
@@ -95,8 +100,9 @@ def step_names(h5):
     return sorted(h5["steps"].keys(), key=lambda name: int(h5["steps"][name].attrs["step"]))
 
 
-def compare_steps(reference_path, results_path, first_step=1):
-    """Steps >= first_step of a results file against the reference; returns (steps, worst)."""
+def compare_steps(reference_path, results_path, first_step=1, pair="interface"):
+    """Steps >= first_step of a results file against the reference (the contact force of the
+    named pair among the fields); returns (steps, worst)."""
     with h5py.File(reference_path, "r") as reference, h5py.File(results_path, "r") as results:
         names = step_names(results)
         expected = [name for name in step_names(reference)
@@ -109,7 +115,7 @@ def compare_steps(reference_path, results_path, first_step=1):
                 check(a.attrs[attribute] == b.attrs[attribute],
                       f"{results_path} step {name}: {attribute} {b.attrs[attribute]}, serial "
                       f"{a.attrs[attribute]}")
-            for field in ("set_reactions", "contact/interface/total_force", "displacement"):
+            for field in ("set_reactions", f"contact/{pair}/total_force", "displacement"):
                 want, got = a[field][...], b[field][...]
                 error = np.abs(got - want).max() / max(np.abs(want).max(), 1e-300)
                 worst = max(worst, error)
@@ -350,14 +356,14 @@ def crossing_variant(args, name, newton_options, contact_edit=None):
     return deck
 
 
-def serial_and_two(args, deck):
+def serial_and_two(args, deck, pair="interface"):
     """Runs the deck on 1 and on 2 processes and compares their steps; returns both results
     files and compare_steps' (steps, worst)."""
     serial = os.path.join(args.scratch, "serial.h5")
     distributed = os.path.join(args.scratch, "two.h5")
     run_ok(args, 1, "run", deck, "-o", serial, "-q")
     run_ok(args, 2, "run", deck, "-o", distributed, "-q")
-    return serial, distributed, *compare_steps(serial, distributed)
+    return serial, distributed, *compare_steps(serial, distributed, pair=pair)
 
 
 def predictor_case(args):
@@ -383,6 +389,23 @@ def stabilize_case(args):
               f"{option}: the stabilisation did no work worth checking ({share:.1e} of the work)")
         print(f"{option} on 2 processes: {count} steps as serial (largest difference "
               f"{worst:.1e}); the stabilisation took {100 * share:.2g} % of the work")
+
+
+def facets_case(args):
+    here = os.path.join(args.source, "input/stress/ironing")
+    text = open(os.path.join(here, "ironing_sts_mu03_wide.deck")).read()
+    check("\nsolve\n" in text and "steps 100 dt=0.01" in text and "contact sts" in text,
+          "the faceted ironing deck changed")
+    text = re.sub(r'^(include|mesh)(\s+)"([^"/][^"]*)"',
+                  lambda m: f'{m[1]}{m[2]}"{os.path.normpath(os.path.join(here, m[3]))}"', text,
+                  flags=re.M)
+    text = text.replace("\nsolve\n", "\nsolve\n  newton predictor=extrapolate line_search=yes\n")
+    deck = os.path.join(args.scratch, "facets.deck")
+    open(deck, "w").write(text.replace("steps 100 dt=0.01", "steps 30 dt=0.01"))
+    serial, distributed, count, worst = serial_and_two(args, deck, pair="die")
+    check(count == 30, f"{count} steps compared, expected 30")
+    print(f"the faceted die with the line search on 2 processes: {count} steps as serial "
+          f"(largest difference {worst:.1e})")
 
 
 def repeat_case(args):
@@ -544,13 +567,15 @@ def main():
     parser.add_argument("--scratch", required=True)
     parser.add_argument("--case", required=True,
                         choices=["crossing", "restart", "errors", "segments", "augmented",
-                                 "predictor", "stabilize", "repeat", "inexact", "setup"])
+                                 "predictor", "stabilize", "facets", "repeat", "inexact",
+                                 "setup"])
     args = parser.parse_args()
     shutil.rmtree(args.scratch, ignore_errors=True)
     os.makedirs(args.scratch)
     {"crossing": crossing_case, "restart": restart_case, "errors": errors_case,
      "segments": segments_case, "augmented": augmented_case,
-     "predictor": predictor_case, "stabilize": stabilize_case, "repeat": repeat_case,
+     "predictor": predictor_case, "stabilize": stabilize_case, "facets": facets_case,
+     "repeat": repeat_case,
      "inexact": inexact_case, "setup": setup_case}[args.case](args)
 
 
