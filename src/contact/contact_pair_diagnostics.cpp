@@ -25,6 +25,15 @@ namespace {
 // 17 % and runs well (docs/verification/sliding.md, report).
 constexpr double kPenetrationWarningShare = 0.25;
 
+// A point's state at its last evaluation (open without a valid trial), and its master segment
+// while in contact (-1 when open): what takeChanges() counts and pendingCrossings() compares.
+ContactState evaluatedState(const PairPoint& point) {
+  return point.trial.valid ? point.trial.state : ContactState::Open;
+}
+int segmentInContact(const PairPoint& point) {
+  return evaluatedState(point) != ContactState::Open ? point.segment : -1;
+}
+
 }  // namespace
 
 void ContactPair::watchPenetration() {
@@ -65,8 +74,8 @@ ContactChanges ContactPair::takeChanges() {
   for (std::size_t i = 0; i < points_.size(); ++i) {
     const PairPoint& point = points_[i];
     if (!evaluatedThisPass(point)) continue;  // another process evaluates it
-    const ContactState state = point.trial.valid ? point.trial.state : ContactState::Open;
-    const int segment = state != ContactState::Open ? point.segment : -1;
+    const ContactState state = evaluatedState(point);
+    const int segment = segmentInContact(point);
     if (state != countedState_[i]) {
       ++changes.state;
       ++stateChangesInAttempt_[i];
@@ -93,10 +102,10 @@ ContactChanges ContactPair::takeChanges() {
 PendingCrossings ContactPair::pendingCrossings() const {
   PendingCrossings pending;
   for (std::size_t i = 0; i < points_.size() && i < countedSegment_.size(); ++i) {
-    const PairPoint& point = points_[i];
-    if (!evaluatedThisPass(point) || !point.trial.valid) continue;
-    if (point.trial.state == ContactState::Open || countedSegment_[i] < 0) continue;
-    if (point.segment == countedSegment_[i]) continue;
+    // As takeChanges() counts a segment change: in contact before and after.
+    if (!evaluatedThisPass(points_[i])) continue;
+    const int segment = segmentInContact(points_[i]);
+    if (segment < 0 || countedSegment_[i] < 0 || segment == countedSegment_[i]) continue;
     ++(segmentChangesInAttempt_[i] == 0 ? pending.first : pending.repeated);
   }
   return pending;

@@ -200,13 +200,19 @@ TEST(SoftPenalty, ThePenetrationAgainstTheElementDepthIsReportedAtTheEnd) {
   EXPECT_GT(stiff.model->contactPairs()[0]->deepestPenetration(), 0.0);
 }
 
+// A deck text from softStackDeck() written as soft.deck into the scratch folder `name` (its mesh
+// path made absolute), for runs of the command; returns the folder.
+std::string writeSoftStackDeck(const std::string& name, const std::string& text) {
+  const std::string directory = scratchDirectory(name);
+  std::ofstream(directory + "/soft.deck") << replaceOnce(
+      text, "\"../../meshes/", "\"" + std::string(COVCONTACT_SOURCE_DIR) + "/meshes/");
+  return directory;
+}
+
 // The same line on the command line: printed at the end of the run and kept in the results
 // file's /summary (attribute warnings), so that a script reading results can see it.
 TEST(SoftPenalty, TheLineIsPrintedAndKeptInTheResultsFile) {
-  const std::string deck = replaceOnce(softStackDeck(), "\"../../meshes/",
-                                       "\"" + std::string(COVCONTACT_SOURCE_DIR) + "/meshes/");
-  const std::string directory = scratchDirectory("soft_penalty");
-  std::ofstream(directory + "/soft.deck") << deck;
+  const std::string directory = writeSoftStackDeck("soft_penalty", softStackDeck());
   const CommandResult run = runCovcontact("run -q --threads 1 soft.deck -o soft.h5", directory);
   ASSERT_EQ(run.exitCode, 0) << run.error;
   const std::size_t at = run.output.find("contact 'vertices': the penetration reached ");
@@ -220,12 +226,10 @@ TEST(SoftPenalty, TheLineIsPrintedAndKeptInTheResultsFile) {
 // line, which names t = 1. A watch that started again at the restart sees only t = 1.5 and 1.75
 // (shortenings of 0.5 and 0.25, below the quarter of the depth) and says nothing (checked).
 TEST(SoftPenalty, ARunContinuedPastTheDeepestStateReportsIt) {
-  std::string deck = replaceOnce(softStackDeck(), "\"../../meshes/",
-                                 "\"" + std::string(COVCONTACT_SOURCE_DIR) + "/meshes/");
-  deck = replaceOnce(deck, "\"-1.0*t\"", "\"-1.0*min(t,2-t)\"");
-  deck = replaceOnce(deck, "steps 4 dt=0.25", "steps 7 dt=0.25");
-  const std::string directory = scratchDirectory("soft_penalty_restart");
-  std::ofstream(directory + "/soft.deck") << deck;
+  const std::string pressAndRelease =
+      replaceOnce(replaceOnce(softStackDeck(), "\"-1.0*t\"", "\"-1.0*min(t,2-t)\""),
+                  "steps 4 dt=0.25", "steps 7 dt=0.25");
+  const std::string directory = writeSoftStackDeck("soft_penalty_restart", pressAndRelease);
   const CommandResult full = runCovcontact("run -q --threads 1 soft.deck -o full.h5", directory);
   ASSERT_EQ(full.exitCode, 0) << full.error;
   const CommandResult continued = runCovcontact(
