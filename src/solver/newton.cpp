@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <limits>
 #include <numeric>
+#include <optional>
 
 #include "common/stopwatch.hpp"
 #include "solver/newton_stall.hpp"
@@ -17,6 +18,44 @@
 #include "solver/tangent_dump.hpp"
 
 namespace cc {
+
+namespace newton_detail {
+
+// Norms of one iteration relative to the first one of the step. Energies are held in units of
+// 2^-energyScale (scaledEnergy) and reported unscaled.
+struct Norms {
+  double residual = 0, firstResidual = 0, energy = 0, firstEnergy = 0;
+  int energyScale = 0;
+  double relativeResidual() const { return firstResidual > 0 ? residual / firstResidual : 0; }
+  double relativeEnergy() const { return firstEnergy > 0 ? energy / firstEnergy : 0; }
+  double unscaledEnergy() const { return std::ldexp(energy, -energyScale); }
+};
+
+// What one call of solve() carries from iteration to iteration.
+struct SolveState {
+  const NewtonStep& step;
+  const NewtonSpec& spec;
+  Eigen::VectorXd prescribedTarget;     // the prescribed dofs' values at step.time
+  Eigen::VectorXd prescribedIncrement;  // what of it the first iteration carries linearly
+  // Nothing drives the step: no load, no prescribed increment (a load that starts later).
+  bool undriven = false;
+  Norms norms;
+  double previousResidual = 0, forcing = kForcingMax;
+  std::vector<std::uint64_t> activeSets;  // signature of the active set, per iteration
+  std::vector<double> residualHistory;    // ||rhs|| per iteration
+  // With an extrapolating predictor: the predicted free increment and K_ff times it (the
+  // first norms' floor, setFirstResidual).
+  Eigen::VectorXd predictedFree, predictedForce;
+};
+
+// The residual of one iterate and the contact changes that led to it.
+struct Iterate {
+  Eigen::VectorXd rhs;
+  ContactChanges changes;
+  bool predicted = false;  // the step's extrapolated first iterate
+};
+
+}  // namespace newton_detail
 
 namespace {
 
@@ -53,16 +92,6 @@ double scaledEnergy(const Eigen::VectorXd& du, const Eigen::VectorXd& rhs, int s
   return std::ldexp(std::abs(dot), duExponent + rhsExponent + scale);
 }
 
-// Norms of one iteration relative to the first one of the step. Energies are held in units of
-// 2^-energyScale (scaledEnergy) and reported unscaled.
-struct Norms {
-  double residual = 0, firstResidual = 0, energy = 0, firstEnergy = 0;
-  int energyScale = 0;
-  double relativeResidual() const { return firstResidual > 0 ? residual / firstResidual : 0; }
-  double relativeEnergy() const { return firstEnergy > 0 ? energy / firstEnergy : 0; }
-  double unscaledEnergy() const { return std::ldexp(energy, -energyScale); }
-};
-
 NewtonResult converged(int iterations) {
   return {NewtonResult::Status::Converged, iterations, FailureKind::Diverged, {}};
 }
@@ -81,7 +110,7 @@ bool usesResidual(NewtonSpec::Criterion criterion) {
 }
 
 // The test after solve k (see newton.hpp); the Residual criterion never converges here.
-bool convergedAfterSolve(const NewtonSpec& spec, const Norms& norms, int iteration) {
+bool convergedAfterSolve(const NewtonSpec& spec, const newton_detail::Norms& norms, int iteration) {
   const bool energyMet = norms.energy <= spec.energyTolerance * norms.firstEnergy;
   const bool residualMet = iteration > 1 && norms.relativeResidual() <= spec.residualTolerance;
   switch (spec.criterion) {
@@ -155,6 +184,13 @@ double Newton::stiffnessForceScale() const {
 
 Eigen::VectorXd Newton::freeResidual() const {
   return gather(internalForce_ - externalForce_, problem_.dofMap().freeDofs());
+}
+
+// The prescribed dofs at their values of the step's end: after the first iteration, whose
+// right-hand side carried their remaining increment linearly (K_fp du_p).
+void Newton::applyPrescribed(const Eigen::VectorXd& target, Eigen::VectorXd& displacement) const {
+  const DofMap& dofs = problem_.dofMap();
+  for (int p = 0; p < dofs.numPrescribed(); ++p) displacement[dofs.prescribedDofs()[p]] = target[p];
 }
 
 void Newton::addToFree(Eigen::VectorXd& displacement, const Eigen::VectorXd& du,
@@ -273,10 +309,11 @@ void Newton::printWorstEquations(const Eigen::VectorXd& Kv, const Eigen::VectorX
   }
 }
 
-NewtonResult Newton::solve(const NewtonStep& step, const NewtonSpec& spec,
-                           Eigen::VectorXd& displacement) {
+newton_detail::SolveState Newton::beginSolve(const NewtonStep& step, const NewtonSpec& spec,
+                                             Eigen::VectorXd& displacement) {
   const DofMap& dofs = problem_.dofMap();
   const Eigen::Matrix3Xd& reference = problem_.referenceCoordinates();
+  newton_detail::SolveState s{step, spec};
   viscousFactor_ = spec.stabilization;
   // x_n, the configuration the step starts from. A re-solve of the same attempt (after an
   // augmented-Lagrangian update, a later stage of penalty continuation) starts from an earlier
@@ -288,115 +325,217 @@ NewtonResult Newton::solve(const NewtonStep& step, const NewtonSpec& spec,
     startedStep_ = step.step;
     startedAttempt_ = step.attempt;
   }
-  Eigen::VectorXd prescribedTarget(dofs.numPrescribed());
-  problem_.prescribedValues(step.time, prescribedTarget);
+  s.prescribedTarget.resize(dofs.numPrescribed());
+  problem_.prescribedValues(step.time, s.prescribedTarget);
   problem_.externalForces(step.time, externalForce_);
   // Whether anything drives the step is decided on the whole increment, before a predictor
   // takes part of it into the first iterate.
-  const bool undriven =
+  s.undriven =
       (externalForce_.array() == 0).all() &&
-      ((prescribedTarget - gather(displacement, dofs.prescribedDofs())).array() == 0).all();
+      ((s.prescribedTarget - gather(displacement, dofs.prescribedDofs())).array() == 0).all();
   if (step.predictedIncrement) displacement += *step.predictedIncrement;
   extrapolatedStart_ = step.predictedIncrement != nullptr;
-  const Eigen::VectorXd prescribedIncrement =
-      prescribedTarget - gather(displacement, dofs.prescribedDofs());
-  auto applyPrescribed = [&] {
-    for (int p = 0; p < dofs.numPrescribed(); ++p) {
-      displacement[dofs.prescribedDofs()[p]] = prescribedTarget[p];
-    }
-  };
+  s.prescribedIncrement = s.prescribedTarget - gather(displacement, dofs.prescribedDofs());
   linear_.beginStep();
-  Norms norms;
-  double previousResidual = 0, forcing = kForcingMax;
-  std::vector<std::uint64_t> activeSets;  // signature of the active set, per iteration
-  // With an extrapolating predictor the first iterate is already close to the solution, and its
-  // own residual (about 1e-5 of the step's on example 6.1(a)) would make the relative tests ask
-  // for round-off: Newton spun 30 iterations there at an absolute residual ten times below the
-  // one the same step converged to without the predictor. The norms are then measured against
-  // the step's increment as well: the force K_ff du_pred and energy |du_pred . K_ff du_pred| of
-  // the predicted free increment through the first tangent, which is what the first residual
-  // and energy of the step without a predictor are to first order (K_ff du_1 = rhs_1), or the
-  // predictor's own residual and energy if larger (a poor prediction).
-  Eigen::VectorXd predictedFree, predictedForce;
-  std::vector<double> residualHistory;  // ||rhs|| per iteration
   orientation_.begin(spec.maxIterations, !problem_.nodeOwners().empty());
   foldCandidate_ = false;
-  for (int iteration = 1; iteration <= spec.maxIterations; ++iteration) {
-    Eigen::VectorXd rhs;
-    ContactChanges changes;
-    const bool predictedIterate = extrapolatedStart_;
-    try {
-      assembleAt(displacement, step, true);
-      extrapolatedStart_ = false;  // the first iterate's assembly is the only one at the start
-      problem_.rememberContactSearch();  // where the line search's trials start their search
-      changes = problem_.takeContactChanges();
-      orientation_.observe(iteration, tangent_.free);
-      rhs = -freeResidual();
-      if (iteration == 1 && dofs.numPrescribed() > 0) {
-        Eigen::VectorXd prescribedForce = tangent_.coupling * prescribedIncrement;
-        problem_.sumOverProcesses(prescribedForce);
-        rhs -= prescribedForce;
+  return s;
+}
+
+std::optional<NewtonResult> Newton::evaluateIterate(newton_detail::SolveState& s, int iteration,
+                                                    const Eigen::VectorXd& displacement,
+                                                    newton_detail::Iterate& it) {
+  it.predicted = extrapolatedStart_;
+  try {
+    assembleAt(displacement, s.step, true);
+    extrapolatedStart_ = false;        // the first iterate's assembly is the only one at the start
+    problem_.rememberContactSearch();  // where the line search's trials start their search
+    it.changes = problem_.takeContactChanges();
+    orientation_.observe(iteration, tangent_.free);
+    it.rhs = -freeResidual();
+    if (iteration == 1 && problem_.dofMap().numPrescribed() > 0) {
+      Eigen::VectorXd prescribedForce = tangent_.coupling * s.prescribedIncrement;
+      problem_.sumOverProcesses(prescribedForce);
+      it.rhs -= prescribedForce;
+    }
+  } catch (const StepFailure& failure) {
+    return failed(iteration, failure.kind(), failure.what());
+  }
+  return std::nullopt;
+}
+
+// Ends a solve that will not converge as it goes: an active set or residual cycle, or a residual
+// that stopped improving (newton_stall.hpp). With the line search none of these apply: it is
+// the load stepper's remedy for them. Records this iterate's residual norm.
+std::optional<NewtonResult> Newton::detectStall(newton_detail::SolveState& s, int iteration,
+                                                const newton_detail::Iterate& it) {
+  const bool lineSearch = s.spec.lineSearch;
+  // An extrapolated first iterate's active set is a prediction (points held closed by their
+  // gap history, ContactPair::holdsClosedAtPrediction), not a state Newton passed through: the
+  // next iterates returning to it is no cycle.
+  if (!lineSearch && !it.predicted && enteredCycle(s.activeSets, it.changes)) {
+    // The load stepper retries the step with the line search at once (load_stepper.cpp),
+    // instead of after maxIterations iterations of the cycle.
+    return failed(iteration - 1, FailureKind::Diverged,
+                  fmt::format("the contact active set returned at iteration {} to an earlier "
+                              "iteration's (a cycle)",
+                              iteration));
+  }
+  s.norms.residual = safeNorm(it.rhs);
+  s.residualHistory.push_back(s.norms.residual);
+  if (!lineSearch && residualCycles(s.residualHistory)) {
+    return failed(iteration - 1, FailureKind::Diverged,
+                  fmt::format("the residual norms of iterations {} to {} repeat with period 2 "
+                              "(a cycle without state changes)",
+                              iteration - 3, iteration));
+  }
+  if (const int best = lineSearch ? 0 : stoppedImproving(s.residualHistory, s.norms.firstResidual);
+      best > 0) {
+    return failed(iteration - 1, FailureKind::Diverged,
+                  fmt::format("the residual has stayed above its value of iteration {} for {} "
+                              "iterations (no progress)",
+                              best, kNoProgressIterations));
+  }
+  return std::nullopt;
+}
+
+// With an extrapolating predictor the first iterate is already close to the solution, and its
+// own residual (about 1e-5 of the step's on example 6.1(a)) would make the relative tests ask
+// for round-off: Newton spun 30 iterations there at an absolute residual ten times below the
+// one the same step converged to without the predictor. The norms are then measured against
+// the step's increment as well: the force K_ff du_pred and energy |du_pred . K_ff du_pred| of
+// the predicted free increment through the first tangent, which is what the first residual
+// and energy of the step without a predictor are to first order (K_ff du_1 = rhs_1), or the
+// predictor's own residual and energy if larger (a poor prediction).
+void Newton::setFirstResidual(newton_detail::SolveState& s) {
+  const NewtonStep& step = s.step;
+  s.norms.firstResidual = step.referenceResidual > 0 ? step.referenceResidual : s.norms.residual;
+  if (step.predictedIncrement && step.referenceResidual == 0) {
+    s.predictedFree = gather(*step.predictedIncrement, problem_.dofMap().freeDofs());
+    s.predictedForce = tangent_.free * s.predictedFree;
+    problem_.sumOverProcesses(s.predictedForce);
+    s.norms.firstResidual = std::max(s.norms.firstResidual, safeNorm(s.predictedForce));
+  }
+  firstResidual_ = s.norms.firstResidual;
+}
+
+bool Newton::residualAtRoundoff(const newton_detail::SolveState& s, int iteration,
+                                bool residualMet) const {
+  double forceScale = std::max(safeNorm(internalForce_), safeNorm(externalForce_));
+  // A step that nothing drives (no load, no prescribed increment: a load that starts later)
+  // has forces that are themselves round-off: the deformation gradient of x = X + u carries
+  // errors of eps |x|, which the stiffness turns into forces of eps |K| |x|. Measured against
+  // those forces their own round-off was "never reached" and a valid deck diverged.
+  if (s.undriven) forceScale = std::max(forceScale, stiffnessForceScale());
+  if (s.norms.residual <= kRoundoffResidual * forceScale) return true;
+  // A stiff penalty makes forces of eps g whose round-off, eps_N times that of the coordinates,
+  // dwarfs the round-off of the internal force itself: at 100 times the automatic penalty the
+  // residual stalled at 3e-10 of its first value and Newton spun 30 iterations there. Checked
+  // at any relative residual: in the small steps of a cut-back the first residual is small
+  // too, and at 1e4 times the automatic penalty the floor lay at 2e-5 of it (a gate at 1e-6
+  // failed the step after 10 cut-backs).
+  return !residualMet && iteration > 1 &&
+         s.norms.residual <= kRoundoffStiffness * stiffnessForceScale();
+}
+
+std::optional<NewtonResult> Newton::solveCorrection(newton_detail::SolveState& s, int iteration,
+                                                    const Eigen::VectorXd& rhs,
+                                                    Eigen::VectorXd& du) {
+  const DofMap& dofs = problem_.dofMap();
+  try {
+    for (const TangentDumpRequest& dump : dumps_) {
+      if (dump.step != s.step.step || dump.iteration != iteration || s.step.attempt != 0) continue;
+      writeTangentDump(dump.directory, tangent_, rhs, dofs, current_);
+      observer_.note(fmt::format("tangent of step {} iteration {} written to {}", s.step.step,
+                                 iteration, dump.directory));
+    }
+    linear_.setLayout({dofs.freeDofs(), current_, problem_.nodeOwners()});
+    linear_.factorize(tangent_);
+    if (linear_.iterative()) {
+      if (iteration > 1) {
+        const double ratio = s.norms.residual / s.previousResidual;
+        s.forcing = std::min({kForcingMax, kForcingGamma * ratio * ratio,
+                              kForcingResidualFactor * s.norms.relativeResidual()});
+        s.forcing = std::max(s.forcing, kForcingMin);
       }
-    } catch (const StepFailure& failure) {
+      linear_.setForcing(s.forcing);
+    }
+    du = linear_.solve(rhs);
+  } catch (const SolveInterrupted&) {
+    return interrupted(iteration);
+  } catch (const StepFailure& failure) {
+    if (failure.kind() != FailureKind::SingularSystem) {
       return failed(iteration, failure.kind(), failure.what());
     }
-    // An extrapolated first iterate's active set is a prediction (points held closed by their
-    // gap history, ContactPair::holdsClosedAtPrediction), not a state Newton passed through: the
-    // next iterates returning to it is no cycle.
-    if (!spec.lineSearch && !predictedIterate && enteredCycle(activeSets, changes)) {
-      // The load stepper retries the step with the line search at once (load_stepper.cpp),
-      // instead of after maxIterations iterations of the cycle.
-      return failed(iteration - 1, FailureKind::Diverged,
-                    fmt::format("the contact active set returned at iteration {} to an earlier "
-                                "iteration's (a cycle)",
-                                iteration));
+    // Name what is missing (a support, a contact) rather than only the pivot that showed it.
+    SingularStiffnessDiagnosis diagnosis =
+        describeSingularStiffness(tangent_.free, dofs, current_, problem_.bodies());
+    std::string& missing = diagnosis.message;
+    if (diagnosis.freeRigidMotion && s.spec.stabilization == 0) {
+      missing +=
+          "; if contact alone is to hold the body (or will, once it touches), viscous "
+          "stabilisation (newton stabilize=C) carries it";
     }
-    norms.residual = safeNorm(rhs);
-    residualHistory.push_back(norms.residual);
-    if (!spec.lineSearch && residualCycles(residualHistory)) {
-      return failed(iteration - 1, FailureKind::Diverged,
-                    fmt::format("the residual norms of iterations {} to {} repeat with period 2 "
-                                "(a cycle without state changes)",
-                                iteration - 3, iteration));
+    return failed(iteration, failure.kind(), missing + " (" + failure.what() + ")");
+  }
+  s.previousResidual = s.norms.residual;
+  return std::nullopt;
+}
+
+void Newton::measureEnergy(newton_detail::SolveState& s, int iteration, const Eigen::VectorXd& du,
+                           const Eigen::VectorXd& rhs) {
+  newton_detail::Norms& norms = s.norms;
+  if (iteration == 1) {
+    // The unit of this step's energies: 2^-scale near the first energy (an exact power of two).
+    int exponent = 0;
+    std::frexp(scaledEnergy(du, rhs, 0), &exponent);
+    norms.energyScale = std::clamp(-exponent, -1000, 1000);
+    if (std::abs(norms.energyScale) < 900) norms.energyScale = 0;  // normal range: no scaling
+  }
+  norms.energy = scaledEnergy(du, rhs, norms.energyScale);
+  if (iteration == 1) {
+    // A reference energy from an earlier solve of this step is in unscaled units: used only
+    // when this one is unscaled too.
+    norms.firstEnergy = s.step.referenceEnergy > 0 && norms.energyScale == 0
+                            ? s.step.referenceEnergy
+                            : norms.energy;
+    if (s.predictedForce.size() > 0) {
+      norms.firstEnergy = std::max(
+          norms.firstEnergy, scaledEnergy(s.predictedFree, s.predictedForce, norms.energyScale));
     }
-    if (const int best =
-            spec.lineSearch ? 0 : stoppedImproving(residualHistory, norms.firstResidual);
-        best > 0) {
-      return failed(iteration - 1, FailureKind::Diverged,
-                    fmt::format("the residual has stayed above its value of iteration {} for {} "
-                                "iterations (no progress)",
-                                best, kNoProgressIterations));
-    }
-    if (iteration == 1) {
-      norms.firstResidual = step.referenceResidual > 0 ? step.referenceResidual : norms.residual;
-      if (step.predictedIncrement && step.referenceResidual == 0) {
-        predictedFree = gather(*step.predictedIncrement, dofs.freeDofs());
-        predictedForce = tangent_.free * predictedFree;
-        problem_.sumOverProcesses(predictedForce);
-        norms.firstResidual = std::max(norms.firstResidual, safeNorm(predictedForce));
-      }
-      firstResidual_ = norms.firstResidual;
-    }
+    firstEnergy_ = norms.firstEnergy;
+  }
+}
+
+// Evaluate once more at the converged displacement, so that the internal force (the reactions)
+// and every contribution's trial state (the contact history to be committed) belong to the
+// state the step ends in, not to the one before the last update.
+NewtonResult Newton::finishConverged(const newton_detail::SolveState& s,
+                                     const Eigen::VectorXd& displacement, int iteration) {
+  try {
+    assembleAt(displacement, s.step, false);
+  } catch (const StepFailure& failure) {
+    return failed(iteration, failure.kind(), failure.what());
+  }
+  finalRelativeResidual_ =
+      s.norms.firstResidual > 0 ? safeNorm(freeResidual()) / s.norms.firstResidual : 0.0;
+  return converged(iteration);
+}
+
+NewtonResult Newton::solve(const NewtonStep& step, const NewtonSpec& spec,
+                           Eigen::VectorXd& displacement) {
+  newton_detail::SolveState s = beginSolve(step, spec, displacement);
+  newton_detail::Norms& norms = s.norms;
+  for (int iteration = 1; iteration <= spec.maxIterations; ++iteration) {
+    newton_detail::Iterate it;
+    if (auto stop = evaluateIterate(s, iteration, displacement, it)) return *stop;
+    if (auto stop = detectStall(s, iteration, it)) return *stop;
+    if (iteration == 1) setFirstResidual(s);
     if (!std::isfinite(norms.residual)) {
       return failed(iteration, FailureKind::NotFinite, "residual is not finite");
     }
-    double forceScale = std::max(safeNorm(internalForce_), safeNorm(externalForce_));
-    // A step that nothing drives (no load, no prescribed increment: a load that starts later)
-    // has forces that are themselves round-off: the deformation gradient of x = X + u carries
-    // errors of eps |x|, which the stiffness turns into forces of eps |K| |x|. Measured against
-    // those forces their own round-off was "never reached" and a valid deck diverged.
-    if (undriven) forceScale = std::max(forceScale, stiffnessForceScale());
-    bool atRoundoff = norms.residual <= kRoundoffResidual * forceScale;
     const bool residualMet = iteration > 1 && norms.relativeResidual() <= spec.residualTolerance;
-    // A stiff penalty makes forces of eps g whose round-off, eps_N times that of the coordinates,
-    // dwarfs the round-off of the internal force itself: at 100 times the automatic penalty the
-    // residual stalled at 3e-10 of its first value and Newton spun 30 iterations there. Checked
-    // at any relative residual: in the small steps of a cut-back the first residual is small
-    // too, and at 1e4 times the automatic penalty the floor lay at 2e-5 of it (a gate at 1e-6
-    // failed the step after 10 cut-backs).
-    if (!atRoundoff && !residualMet && iteration > 1) {
-      atRoundoff = norms.residual <= kRoundoffStiffness * stiffnessForceScale();
-    }
+    const bool atRoundoff = residualAtRoundoff(s, iteration, residualMet);
     if (iteration > 1 && usesResidual(spec.criterion) && (residualMet || atRoundoff)) {
       finalRelativeResidual_ = norms.relativeResidual();
       return converged(iteration - 1);
@@ -407,91 +546,26 @@ NewtonResult Newton::solve(const NewtonStep& step, const NewtonSpec& spec,
                                 norms.relativeResidual(), iteration));
     }
     Eigen::VectorXd du;
-    try {
-      for (const TangentDumpRequest& dump : dumps_) {
-        if (dump.step != step.step || dump.iteration != iteration || step.attempt != 0) continue;
-        writeTangentDump(dump.directory, tangent_, rhs, dofs, current_);
-        observer_.note(fmt::format("tangent of step {} iteration {} written to {}", step.step,
-                                   iteration, dump.directory));
-      }
-      linear_.setLayout({dofs.freeDofs(), current_, problem_.nodeOwners()});
-      linear_.factorize(tangent_);
-      if (linear_.iterative()) {
-        if (iteration > 1) {
-          const double ratio = norms.residual / previousResidual;
-          forcing = std::min({kForcingMax, kForcingGamma * ratio * ratio,
-                              kForcingResidualFactor * norms.relativeResidual()});
-          forcing = std::max(forcing, kForcingMin);
-        }
-        linear_.setForcing(forcing);
-      }
-      du = linear_.solve(rhs);
-    } catch (const SolveInterrupted&) {
-      return interrupted(iteration);
-    } catch (const StepFailure& failure) {
-      if (failure.kind() != FailureKind::SingularSystem) {
-        return failed(iteration, failure.kind(), failure.what());
-      }
-      // Name what is missing (a support, a contact) rather than only the pivot that showed it.
-      SingularStiffnessDiagnosis diagnosis =
-          describeSingularStiffness(tangent_.free, dofs, current_, problem_.bodies());
-      std::string& missing = diagnosis.message;
-      if (diagnosis.freeRigidMotion && spec.stabilization == 0) {
-        missing +=
-            "; if contact alone is to hold the body (or will, once it touches), viscous "
-            "stabilisation (newton stabilize=C) carries it";
-      }
-      return failed(iteration, failure.kind(), missing + " (" + failure.what() + ")");
-    }
+    if (auto stop = solveCorrection(s, iteration, it.rhs, du)) return *stop;
     if (tangentCheck_.step == step.step && tangentCheck_.iteration == iteration) {
       checkTangent(step, du, displacement);
     }
-    previousResidual = norms.residual;
-    if (iteration == 1) {
-      // The unit of this step's energies: 2^-scale near the first energy (an exact power of two).
-      int exponent = 0;
-      std::frexp(scaledEnergy(du, rhs, 0), &exponent);
-      norms.energyScale = std::clamp(-exponent, -1000, 1000);
-      if (std::abs(norms.energyScale) < 900) norms.energyScale = 0;  // normal range: no scaling
-    }
-    norms.energy = scaledEnergy(du, rhs, norms.energyScale);
-    if (iteration == 1) {
-      // A reference energy from an earlier solve of this step is in unscaled units: used only
-      // when this one is unscaled too.
-      norms.firstEnergy =
-          step.referenceEnergy > 0 && norms.energyScale == 0 ? step.referenceEnergy : norms.energy;
-      if (predictedForce.size() > 0) {
-        norms.firstEnergy = std::max(
-            norms.firstEnergy, scaledEnergy(predictedFree, predictedForce, norms.energyScale));
-      }
-      firstEnergy_ = norms.firstEnergy;
-    }
-    if (iteration == 1) applyPrescribed();
-    const double largestResidual =
-        *std::max_element(residualHistory.begin(), residualHistory.end());
+    measureEnergy(s, iteration, du, it.rhs);
+    if (iteration == 1) applyPrescribed(s.prescribedTarget, displacement);
     const double fraction =
-        spec.lineSearch ? lineSearch(step, du, rhs, displacement, largestResidual) : 1.0;
+        spec.lineSearch
+            ? lineSearch(step, du, it.rhs, displacement,
+                         *std::max_element(s.residualHistory.begin(), s.residualHistory.end()))
+            : 1.0;
     addToFree(displacement, du, fraction);
 
     observer_.iteration({step.step, step.attempt, iteration, step.time, norms.residual,
                          norms.relativeResidual(), norms.unscaledEnergy(), norms.relativeEnergy(),
-                         secondsSince(runStart_), changes});
+                         secondsSince(runStart_), it.changes});
     if (atRoundoff || convergedAfterSolve(spec, norms, iteration)) {
-      // Evaluate once more at the converged displacement, so that the internal force (the
-      // reactions) and every contribution's trial state (the contact history to be committed)
-      // belong to the state the step ends in, not to the one before the last update.
-      try {
-        assembleAt(displacement, step, false);
-      } catch (const StepFailure& failure) {
-        return failed(iteration, failure.kind(), failure.what());
-      }
-      finalRelativeResidual_ =
-          norms.firstResidual > 0 ? safeNorm(freeResidual()) / norms.firstResidual : 0.0;
-      return converged(iteration);
+      return finishConverged(s, displacement, iteration);
     }
-    if (observer_.stopRequested()) {
-      return interrupted(iteration);
-    }
+    if (observer_.stopRequested()) return interrupted(iteration);
   }
   const std::string switching = problem_.describeSwitchingContact();
   foldCandidate_ = !switching.empty();

@@ -27,6 +27,7 @@
 
 #include <Eigen/Core>
 #include <chrono>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,11 @@
 #include "spec/problem_spec.hpp"
 
 namespace cc {
+
+namespace newton_detail {
+struct SolveState;  // what one solve carries from iteration to iteration (newton.cpp)
+struct Iterate;     // the residual of one iterate and the contact changes that led to it
+}  // namespace newton_detail
 
 // ||rhs|| below this multiple of max(||f_int||, ||f_ext||) is round-off of the assembled sums
 // (machine epsilon times the growth of summing many element contributions per dof).
@@ -167,6 +173,27 @@ class Newton {
   void setTangentCheck(int step, int iteration) { tangentCheck_ = {step, iteration}; }
 
  private:
+  // The phases of solve(), in the order one iteration runs them. Those returning a result end
+  // the solve with it (a failure, an interruption); none means the iteration goes on.
+  newton_detail::SolveState beginSolve(const NewtonStep& step, const NewtonSpec& spec,
+                                       Eigen::VectorXd& displacement);
+  std::optional<NewtonResult> evaluateIterate(newton_detail::SolveState& s, int iteration,
+                                              const Eigen::VectorXd& displacement,
+                                              newton_detail::Iterate& it);
+  std::optional<NewtonResult> detectStall(newton_detail::SolveState& s, int iteration,
+                                          const newton_detail::Iterate& it);
+  void setFirstResidual(newton_detail::SolveState& s);
+  // Whether ||rhs|| is at round-off of the forces (see "Round-off" above).
+  bool residualAtRoundoff(const newton_detail::SolveState& s, int iteration,
+                          bool residualMet) const;
+  std::optional<NewtonResult> solveCorrection(newton_detail::SolveState& s, int iteration,
+                                              const Eigen::VectorXd& rhs, Eigen::VectorXd& du);
+  void measureEnergy(newton_detail::SolveState& s, int iteration, const Eigen::VectorXd& du,
+                     const Eigen::VectorXd& rhs);
+  void applyPrescribed(const Eigen::VectorXd& target, Eigen::VectorXd& displacement) const;
+  NewtonResult finishConverged(const newton_detail::SolveState& s,
+                               const Eigen::VectorXd& displacement, int iteration);
+
   void assembleAt(const Eigen::VectorXd& displacement, const NewtonStep& step, bool withTangent);
   Eigen::VectorXd freeResidual() const;  // R_f = f_int - f_ext on free dofs
   // max |K_ff diagonal| * max |x|: the force that round-off of the coordinates (eps |x|) makes
