@@ -12,19 +12,10 @@ import xml.etree.ElementTree as ElementTree
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "support"))
 import progress_lines  # noqa: E402  (tests/support)
+from script_checks import check  # noqa: E402  (tests/support)
 
 # Longest time one command of these tests may take on a loaded 2-core machine.
 COMMAND_TIMEOUT_S = 100
-
-
-def fail(message):
-    print("FAIL " + message)
-    sys.exit(1)
-
-
-def check(condition, message):
-    if not condition:
-        fail(message)
 
 
 def parse_arguments(description, extra=None):

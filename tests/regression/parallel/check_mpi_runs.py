@@ -58,20 +58,11 @@ import numpy as np
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "support"))
 import progress_lines  # noqa: E402  (tests/support)
+from script_checks import check  # noqa: E402  (tests/support)
 
 TIMEOUT_S = 240  # one command on a loaded 2-core machine
 TOLERANCE = 1e-8  # serial against distributed: different summation order and solver only
 EXIT = {"ok": 0, "usage": 1, "input": 2, "interrupted": 4}  # `covcontact --help`
-
-
-def fail(message):
-    print("FAIL " + message)
-    sys.exit(1)
-
-
-def check(condition, message):
-    if not condition:
-        fail(message)
 
 
 def mpirun(args, processes):

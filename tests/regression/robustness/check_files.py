@@ -59,6 +59,7 @@ import h5py
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "support"))
 import progress_lines  # noqa: E402  (tests/support)
+from script_checks import check, fail  # noqa: E402  (tests/support)
 
 COMMAND_TIMEOUT_S = 120
 EXIT_OK, EXIT_USAGE, EXIT_INTERRUPTED, EXIT_IO, EXIT_OUT_OF_MEMORY = 0, 1, 4, 6, 8
@@ -70,16 +71,6 @@ SECOND_INTERRUPT_ATTEMPTS = 5  # interrupt_case: tries for both signals to land 
 LONG_STEPS = 60
 STRESS_STEPS = 300  # compare_in_progress: the long deck in 300 steps (15-40 s)
 COMPARE_SECONDS = 40  # compare_in_progress: then the run is interrupted if it is still going
-
-
-def fail(message):
-    print("FAIL " + message)
-    sys.exit(1)
-
-
-def check(condition, message):
-    if not condition:
-        fail(message)
 
 
 def run(args, *arguments, cwd=None):

@@ -34,6 +34,9 @@ import time
 import h5py
 import numpy as np
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "support"))
+from script_checks import check  # noqa: E402  (tests/support)
+
 RESTART_DECK = "restart_6_1.deck"
 CUTBACK_DECK = "cutback_equivalence.deck"
 PLANNED_STEPS = 41
@@ -43,16 +46,6 @@ COMMAND_TIMEOUT_S = 120
 # The continued run repeats the same arithmetic; 1e-10 leaves room for nothing but round-off.
 RESTART_TOLERANCE = 1e-10
 EXIT = {"ok": 0, "usage": 1, "input": 2, "interrupted": 4, "io": 6}  # `covcontact --help`
-
-
-def fail(message):
-    print("FAIL " + message)
-    sys.exit(1)
-
-
-def check(condition, message):
-    if not condition:
-        fail(message)
 
 
 def command(args, deck, results, *extra):
