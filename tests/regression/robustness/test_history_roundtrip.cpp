@@ -5,6 +5,7 @@
 
 #include <fstream>
 
+#include "cube_decks.hpp"
 #include "deck/deck_parser.hpp"
 #include "output/restart_io.hpp"
 #include "output/results_layout.hpp"
@@ -171,18 +172,10 @@ TEST(History, AHistoryThatDoesNotFitTheModelIsRefusedWithItsName) {
   EXPECT_NO_THROW(model->restoreHistory(history));
 }
 
-// The unit cube clamped at its bottom and pulled at its top by a total force 10 t, written to
-// `directory`/`name` with the given steps lines.
+// The clamped cube (cube_decks.hpp) written to `directory`/`name` with the given steps lines.
 void writeClampedCubeDeck(const std::string& directory, const std::string& name,
                           const std::string& steps) {
-  std::ofstream(directory + "/" + name)
-      << "mesh \"" << COVCONTACT_SOURCE_DIR << "/meshes/cube.geo\" n=2\n"
-      << "material m neohooke E=100 nu=0.3\n"
-         "elements cube hex8 material=m\n"
-         "fix zmin all\n"
-         "load zmax fz \"10*t\" total\n"
-         "solve\n"
-      << steps << "end\n";
+  std::ofstream(directory + "/" + name) << clampedCubeDeck(steps);
 }
 
 double chosenFactor(const ResultsReader& reader, int step) {

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <string>
 
+#include "cube_decks.hpp"
 #include "deck_runner.hpp"
 #include "model/viscous_stabilization.hpp"
 
@@ -162,21 +163,6 @@ TEST(ViscousStabilization, TheEnergyBalanceCountsTheViscousWork) {
   EXPECT_GT(last.stabilizationDissipation, 10 * last.quadratureBound);
 }
 
-// The unit cube clamped at its bottom and pulled at its top by a total force 10 t, with the
-// factor chosen by the run (`stabilize_share`) or given (`stabilize`) on the steps lines.
-std::string clampedCubeDeck(const std::string& steps) {
-  return "mesh \"../../../meshes/cube.geo\" n=2\n"
-         "material m neohooke E=100 nu=0.3\n"
-         "elements cube hex8 material=m\n"
-         "fix zmin all\n"
-         "load zmax fz \"10*t\" total\n"
-         "solve\n"
-         "  steps " +
-         steps +
-         "\n"
-         "end\n";
-}
-
 // The load's nodal shares on the top face: `total` splits it equally over the set's 9 nodes.
 Eigen::VectorXd topLoadShares(const Eigen::Matrix3Xd& nodes) {
   Eigen::VectorXd share = Eigen::VectorXd::Zero(nodes.cols());
@@ -194,7 +180,7 @@ Eigen::VectorXd topLoadShares(const Eigen::Matrix3Xd& nodes) {
 TEST(ViscousStabilization, AShareSetsTheFactorFromThePhasesFirstStep) {
   const double share = 0.05, dt = 0.25;
   const DeckRun chosen =
-      runDeckText(clampedCubeDeck("4 dt=0.25 stabilize_share=0.05"), virtualPath());
+      runDeckText(clampedCubeDeck("  steps 4 dt=0.25 stabilize_share=0.05\n"), virtualPath());
   ASSERT_EQ(chosen.summary.outcome, RunSummary::Outcome::Completed);
   ASSERT_EQ(chosen.steps.size(), 4u);
   const Eigen::Matrix3Xd& nodes = chosen.model->mesh().coordinates;
@@ -211,9 +197,10 @@ TEST(ViscousStabilization, AShareSetsTheFactorFromThePhasesFirstStep) {
                          (second.colwise().squaredNorm().dot(mass) / dt);
   EXPECT_NEAR(applied, factor, 1e-12 * factor);
 
-  const DeckRun given = runDeckText(
-      clampedCubeDeck(fmt::format("1 dt=0.25\n  steps 3 dt=0.25 stabilize={:.17g}", factor)),
-      virtualPath());
+  const DeckRun given =
+      runDeckText(clampedCubeDeck(fmt::format(
+                      "  steps 1 dt=0.25\n  steps 3 dt=0.25 stabilize={:.17g}\n", factor)),
+                  virtualPath());
   ASSERT_EQ(given.steps.size(), 4u);
   for (std::size_t k = 0; k < 4; ++k) {
     SCOPED_TRACE(k + 1);
@@ -221,7 +208,7 @@ TEST(ViscousStabilization, AShareSetsTheFactorFromThePhasesFirstStep) {
               1e-12 * given.steps[k].displacement.norm());
   }
   // The viscous force resists the pull: the stabilised top moves less than without it.
-  const DeckRun plain = runDeckText(clampedCubeDeck("4 dt=0.25"), virtualPath());
+  const DeckRun plain = runDeckText(clampedCubeDeck("  steps 4 dt=0.25\n"), virtualPath());
   EXPECT_LT(chosen.steps[1].displacement.row(2).maxCoeff(),
             plain.steps[1].displacement.row(2).maxCoeff());
 }
