@@ -45,6 +45,33 @@ void ElementSet::gather(std::size_t item, const Eigen::Matrix3Xd& coordinates,
   for (int k = 0; k < count; ++k) nodes.col(k) = coordinates.col(connectivity_(item, k));
 }
 
+template <typename Term>
+double ElementSet::sumOverElements(const Eigen::Matrix3Xd& first, const Eigen::Matrix3Xd& second,
+                                   Term term) const {
+  double sum = 0.0;
+  Eigen::Matrix3Xd a, b;
+  for (Eigen::Index e = 0; e < connectivity_.rows(); ++e) {
+    gather(e, first, a);
+    gather(e, second, b);
+    sum += term(e, a, b);
+  }
+  return sum;
+}
+
+const std::vector<double>& ElementSet::referenceVolumes(
+    const Eigen::Matrix3Xd& referenceCoordinates) const {
+  std::call_once(volumesCounted_, [&] {
+    std::vector<double> volumes(static_cast<std::size_t>(connectivity_.rows()));
+    Eigen::Matrix3Xd reference;
+    for (Eigen::Index e = 0; e < connectivity_.rows(); ++e) {
+      gather(e, referenceCoordinates, reference);
+      volumes[e] = hexahedronVolume(reference);
+    }
+    volumes_ = std::move(volumes);
+  });
+  return volumes_;
+}
+
 LocalStatus ElementSet::evaluate(std::size_t item, const AssemblyState& state,
                                  Eigen::VectorXd& force, Eigen::MatrixXd* tangent) {
   thread_local Eigen::Matrix3Xd reference, current;
@@ -58,7 +85,8 @@ LocalStatus ElementSet::evaluate(std::size_t item, const AssemblyState& state,
     if (state.viscousFactor > 0 && dt > 0 && state.previous) {
       thread_local Eigen::Matrix3Xd previous;
       gather(item, *state.previous, previous);
-      addViscousForces(reference, current, previous, state.viscousFactor / dt, force, tangent);
+      addViscousForces(referenceVolumes(*state.reference)[item], current, previous,
+                       state.viscousFactor / dt, force, tangent);
     }
     return LocalStatus::success();
   }
@@ -87,28 +115,22 @@ double ElementSet::viscousWork(const Eigen::Matrix3Xd& referenceCoordinates,
                                const Eigen::Matrix3Xd& currentCoordinates,
                                const Eigen::Matrix3Xd& previousCoordinates,
                                double factorPerTime) const {
-  double work = 0.0;
-  Eigen::Matrix3Xd reference, current, previous;
-  for (Eigen::Index e = 0; e < connectivity_.rows(); ++e) {
-    gather(e, referenceCoordinates, reference);
-    gather(e, currentCoordinates, current);
-    gather(e, previousCoordinates, previous);
-    work += cc::viscousWork(reference, current, previous, factorPerTime);
-  }
-  return work;
+  const std::vector<double>& volumes = referenceVolumes(referenceCoordinates);
+  return sumOverElements(
+      currentCoordinates, previousCoordinates,
+      [&](Eigen::Index e, const Eigen::Matrix3Xd& current, const Eigen::Matrix3Xd& previous) {
+        return cc::viscousWork(volumes[e], current, previous, factorPerTime);
+      });
 }
 
 double ElementSet::strainEnergy(const Eigen::Matrix3Xd& referenceCoordinates,
                                 const Eigen::Matrix3Xd& currentCoordinates) const {
-  double energy = 0.0;
-  Eigen::Matrix3Xd reference, current;
-  for (Eigen::Index e = 0; e < connectivity_.rows(); ++e) {
-    gather(e, referenceCoordinates, reference);
-    gather(e, currentCoordinates, current);
-    std::span<const double> history(committedHistory_.data() + e * historySize_, historySize_);
-    energy += kernel_->strainEnergy(reference, current, *material_, history);
-  }
-  return energy;
+  return sumOverElements(
+      referenceCoordinates, currentCoordinates,
+      [&](Eigen::Index e, const Eigen::Matrix3Xd& reference, const Eigen::Matrix3Xd& current) {
+        std::span<const double> history(committedHistory_.data() + e * historySize_, historySize_);
+        return kernel_->strainEnergy(reference, current, *material_, history);
+      });
 }
 
 }  // namespace cc

@@ -1,9 +1,11 @@
 // ElementSet: the elements of one deck `elements` block as a Contribution, one item per element:
 // gathers the element's reference and current coordinates, calls its ElementKernel with the
-// block's material, and keeps the per-element history (EAS parameters) committed per step.
+// block's material, and keeps the per-element history (EAS parameters) committed per step and
+// the elements' reference volumes for the viscous stabilisation.
 #pragma once
 
 #include <memory>
+#include <mutex>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -57,6 +59,16 @@ class ElementSet : public Contribution {
 
  private:
   void gather(std::size_t item, const Eigen::Matrix3Xd& coordinates, Eigen::Matrix3Xd& nodes) const;
+  // Sum over the elements of term(e, a, b), a and b the element's nodes in the configurations
+  // `first` and `second`.
+  template <typename Term>
+  double sumOverElements(const Eigen::Matrix3Xd& first, const Eigen::Matrix3Xd& second,
+                         Term term) const;
+  // The reference volume of every element (hexahedronVolume), the viscous stabilisation's lumped
+  // masses: counted once, at the first stabilised evaluation or work (the reference
+  // configuration never changes), by whichever of the assembly threads that call evaluate at
+  // once gets there first; the others wait for it.
+  const std::vector<double>& referenceVolumes(const Eigen::Matrix3Xd& referenceCoordinates) const;
 
   std::string name_;
   Connectivity connectivity_;
@@ -66,6 +78,8 @@ class ElementSet : public Contribution {
   int historySize_ = 0;
   std::vector<double> history_;           // trial, per element historySize_ doubles
   std::vector<double> committedHistory_;  // at the last converged step
+  mutable std::once_flag volumesCounted_;
+  mutable std::vector<double> volumes_;  // per element, once counted (referenceVolumes)
 };
 
 }  // namespace cc

@@ -19,8 +19,8 @@ std::array<int, 8> cornerColumns(Eigen::Index nodes) {
 }
 
 // k = (C / dt) V / n: the viscous coefficient of each node's equal share of the element.
-double nodalViscosity(const Eigen::Matrix3Xd& reference, double factorPerTime) {
-  return factorPerTime * hexahedronVolume(reference) / static_cast<double>(reference.cols());
+double nodalViscosity(double volume, Eigen::Index nodes, double factorPerTime) {
+  return factorPerTime * volume / static_cast<double>(nodes);
 }
 
 }  // namespace
@@ -53,19 +53,19 @@ double hexahedronVolume(const Eigen::Matrix3Xd& reference) {
   return volume;
 }
 
-void addViscousForces(const Eigen::Matrix3Xd& reference, const Eigen::Matrix3Xd& current,
+void addViscousForces(double volume, const Eigen::Matrix3Xd& current,
                       const Eigen::Matrix3Xd& previous, double factorPerTime,
                       Eigen::VectorXd& force, Eigen::MatrixXd* tangent) {
-  const double k = nodalViscosity(reference, factorPerTime);
-  for (Eigen::Index a = 0; a < reference.cols(); ++a) {
+  const double k = nodalViscosity(volume, current.cols(), factorPerTime);
+  for (Eigen::Index a = 0; a < current.cols(); ++a) {
     force.segment<3>(3 * a) += k * (current.col(a) - previous.col(a));
   }
   if (tangent) tangent->diagonal().array() += k;
 }
 
-double viscousWork(const Eigen::Matrix3Xd& reference, const Eigen::Matrix3Xd& current,
-                   const Eigen::Matrix3Xd& previous, double factorPerTime) {
-  return nodalViscosity(reference, factorPerTime) * (current - previous).squaredNorm();
+double viscousWork(double volume, const Eigen::Matrix3Xd& current, const Eigen::Matrix3Xd& previous,
+                   double factorPerTime) {
+  return nodalViscosity(volume, current.cols(), factorPerTime) * (current - previous).squaredNorm();
 }
 
 }  // namespace cc

@@ -16,14 +16,16 @@ namespace cc {
 double hexahedronVolume(const Eigen::Matrix3Xd& reference);
 
 // Adds k (x_a - x_n,a) to the force and k to the tangent's diagonal at every node a of one
-// element, k = factorPerTime V / n with factorPerTime = C / dt. force: 3n, tangent: 3n x 3n.
-void addViscousForces(const Eigen::Matrix3Xd& reference, const Eigen::Matrix3Xd& current,
+// element, k = factorPerTime V / n with factorPerTime = C / dt, V the element's reference volume
+// `volume` (hexahedronVolume: counted once by the caller, as the reference configuration never
+// changes) and n its node count, the columns of `current`. force: 3n, tangent: 3n x 3n.
+void addViscousForces(double volume, const Eigen::Matrix3Xd& current,
                       const Eigen::Matrix3Xd& previous, double factorPerTime,
                       Eigen::VectorXd& force, Eigen::MatrixXd* tangent);
 
 // The work of those forces over the step from x_n to x: the force at x (backward Euler, the
 // rate of the whole step) times the increment, k sum_a |x_a - x_n,a|^2.
-double viscousWork(const Eigen::Matrix3Xd& reference, const Eigen::Matrix3Xd& current,
-                   const Eigen::Matrix3Xd& previous, double factorPerTime);
+double viscousWork(double volume, const Eigen::Matrix3Xd& current, const Eigen::Matrix3Xd& previous,
+                   double factorPerTime);
 
 }  // namespace cc

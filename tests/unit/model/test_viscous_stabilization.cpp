@@ -60,12 +60,12 @@ TEST(ViscousStabilization, ForceAndTangentOfOneElement) {
   Eigen::VectorXd force = Eigen::VectorXd::Zero(24);
   Eigen::MatrixXd tangent = Eigen::MatrixXd::Zero(24, 24);
   const double factorPerTime = 4.0;  // C / dt
-  addViscousForces(reference, current, previous, factorPerTime, force, &tangent);
+  addViscousForces(hexahedronVolume(reference), current, previous, factorPerTime, force, &tangent);
   const Eigen::Vector3d expected = 4.0 * 0.25 * Eigen::Vector3d(0.2, -0.2, 0.05);
   EXPECT_NEAR((force.segment<3>(9) - expected).norm(), 0, 1e-15);
   EXPECT_NEAR(force.norm(), expected.norm(), 1e-15);  // the other nodes have not moved
   EXPECT_TRUE(tangent.isApprox(Eigen::MatrixXd::Identity(24, 24)));  // 4 * 1/4
-  EXPECT_NEAR(viscousWork(reference, current, previous, factorPerTime),
+  EXPECT_NEAR(viscousWork(hexahedronVolume(reference), current, previous, factorPerTime),
               expected.dot(current.col(3) - previous.col(3)), 1e-15);
 }
 
