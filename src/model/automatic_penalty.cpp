@@ -26,11 +26,12 @@ double layerThickness(const Mesh& mesh, const FaceSet& faces, int face) {
   return 2.0 * std::abs((elementCentre - faceCentre).dot(normal));
 }
 
-// Mean of value(E, h) over the faces whose element has a Young's modulus and a positive h.
-template <class Value>
-double meanOverFaces(const Mesh& mesh, const FaceSet& faces, const std::vector<double>& blockYoung,
-                     Value value) {
-  double sum = 0;
+}  // namespace
+
+// The means over the faces whose element has a Young's modulus and a positive h.
+SurfaceLayer surfaceLayer(const Mesh& mesh, const FaceSet& faces,
+                          const std::vector<double>& blockYoung) {
+  double stiffness = 0, depth = 0;
   int count = 0;
   for (Eigen::Index face = 0; face < faces.connectivity.rows(); ++face) {
     if (faces.ownerBlock.empty()) break;
@@ -38,22 +39,15 @@ double meanOverFaces(const Mesh& mesh, const FaceSet& faces, const std::vector<d
     if (!std::isfinite(young)) continue;
     const double h = layerThickness(mesh, faces, static_cast<int>(face));
     if (!(h > 0)) continue;
-    sum += value(young, h);
+    stiffness += young / h;
+    depth += h;
     ++count;
   }
-  return count > 0 ? sum / count : std::numeric_limits<double>::quiet_NaN();
-}
-
-}  // namespace
-
-double surfaceStiffness(const Mesh& mesh, const FaceSet& faces,
-                        const std::vector<double>& blockYoung) {
-  return meanOverFaces(mesh, faces, blockYoung, [](double young, double h) { return young / h; });
-}
-
-double surfaceLayerDepth(const Mesh& mesh, const FaceSet& faces,
-                         const std::vector<double>& blockYoung) {
-  return meanOverFaces(mesh, faces, blockYoung, [](double, double h) { return h; });
+  if (count == 0) {
+    const double unknown = std::numeric_limits<double>::quiet_NaN();
+    return {unknown, unknown};
+  }
+  return {stiffness / count, depth / count};
 }
 
 }  // namespace cc

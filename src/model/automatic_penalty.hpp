@@ -20,12 +20,16 @@ namespace cc {
 // eps = 2.1e5, the paper's own choice for 6.1(b).
 inline constexpr double kAutomaticPenaltyFactor = 10.0;
 
-// Mean E/h over the faces of `faces`; blockYoung[b] is Young's modulus of mesh block b (NaN for
-// blocks without elements: their faces are skipped). NaN if no face has a declared element.
-double surfaceStiffness(const Mesh& mesh, const FaceSet& faces,
-                        const std::vector<double>& blockYoung);
-// Mean h over the same faces (NaN if none): the depth of the element layer behind the surface.
-double surfaceLayerDepth(const Mesh& mesh, const FaceSet& faces,
-                         const std::vector<double>& blockYoung);
+// The element layer behind a surface, both means over the same faces.
+struct SurfaceLayer {
+  double stiffness;  // mean E/h
+  double depth;      // mean h: the depth of the element layer behind the surface
+};
+
+// The layer behind `faces`, in one pass over them; blockYoung[b] is Young's modulus of mesh block
+// b (NaN for blocks without elements: their faces are skipped). Both NaN if no face has a
+// declared element.
+SurfaceLayer surfaceLayer(const Mesh& mesh, const FaceSet& faces,
+                          const std::vector<double>& blockYoung);
 
 }  // namespace cc

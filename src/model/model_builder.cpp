@@ -218,18 +218,15 @@ void setAutomaticPenalty(const ContactSpec& spec, const Mesh& mesh,
                          contact::ContactPairConfig& config) {
   const bool normal = spec.penaltyNormal == 0;
   const bool tangential = spec.friction > 0 && spec.penaltyTangential == 0;
-  const FaceSet& master = mesh.faceSets.at(spec.master);
-  double stiffness = surfaceStiffness(mesh, master, blockYoung);
-  double depth = surfaceLayerDepth(mesh, master, blockYoung);
+  SurfaceLayer layer = surfaceLayer(mesh, mesh.faceSets.at(spec.master), blockYoung);
   if (spec.kind != ContactSpec::Kind::SegmentToAnalytical) {
-    const FaceSet& slave = mesh.faceSets.at(spec.slave);
     // The softer side's (as std::min: a master without elements behind it stays unknown).
-    if (const double slaveStiffness = surfaceStiffness(mesh, slave, blockYoung);
-        slaveStiffness < stiffness) {
-      stiffness = slaveStiffness;
-      depth = surfaceLayerDepth(mesh, slave, blockYoung);
+    if (const SurfaceLayer slave = surfaceLayer(mesh, mesh.faceSets.at(spec.slave), blockYoung);
+        slave.stiffness < layer.stiffness) {
+      layer = slave;
     }
   }
+  const double stiffness = layer.stiffness, depth = layer.depth;
   const bool known = std::isfinite(stiffness) && stiffness > 0;
   config.layerDepth = known && std::isfinite(depth) ? depth : 0.0;
   // Known for every pair, whatever eps the deck gives (unknown: 0): the augmented Lagrangian's
