@@ -20,6 +20,8 @@ namespace cc {
 enum class CellType { Hex8, Hex27, Hex18, Quad4, Quad9 };
 
 int nodesPerCell(CellType type);
+// "Hex8", "Hex27", ...: the name in messages and in the results file's cell_type attributes
+// (docs/output-format.md), so a change of it changes the file format.
 const char* toString(CellType type);
 
 using Connectivity = Eigen::Matrix<int, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;

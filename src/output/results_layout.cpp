@@ -25,22 +25,6 @@ std::string linkName(const std::string& name) {
   return link;
 }
 
-const char* cellTypeLabel(CellType type) {
-  switch (type) {
-    case CellType::Hex8:
-      return "Hex8";
-    case CellType::Hex27:
-      return "Hex27";
-    case CellType::Hex18:
-      return "Hex18";
-    case CellType::Quad4:
-      return "Quad4";
-    case CellType::Quad9:
-      return "Quad9";
-  }
-  return "unknown";
-}
-
 h5::Type convergenceRowType() {
   h5::Type type(H5Tcreate(H5T_COMPOUND, sizeof(ConvergenceRow)));
   const hid_t id = type.get();

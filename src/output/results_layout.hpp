@@ -5,7 +5,6 @@
 #include <cstddef>
 #include <string>
 
-#include "mesh/mesh.hpp"
 #include "output/hdf5_io.hpp"
 
 namespace cc::layout {
@@ -44,8 +43,6 @@ std::string stepGroupPath(int step);
 // A user name (block, set, pair) as an HDF5 link name: '/' would open a sub-group, so it becomes
 // '_'; "." (the group itself) becomes "_". The original name is kept in the "name" attribute.
 std::string linkName(const std::string& name);
-// "Hex8", "Hex27", ... as stored in the cell_type attributes.
-const char* cellTypeLabel(CellType type);
 
 // One row of /convergence (memory layout of the compound type).
 struct ConvergenceRow {

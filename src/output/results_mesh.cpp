@@ -33,8 +33,7 @@ XdmfBlock writeBlock(h5::FileRef file, hid_t blocksGroup, const ElementBlock& bl
   const std::string link = layout::linkName(block.name);
   h5::Group group = h5::createGroup(file, blocksGroup, link);
   h5::writeAttribute(file, group.get(), "name", block.name);
-  h5::writeAttribute(file, group.get(), "cell_type",
-                     std::string(layout::cellTypeLabel(block.type)));
+  h5::writeAttribute(file, group.get(), "cell_type", std::string(toString(block.type)));
   h5::writeAttribute(file, group.get(), "index", index);
   h5::writeAttribute(file, group.get(), "first_element", static_cast<int>(firstElement));
   writeConnectivity(file, group.get(), "connectivity", block.connectivity);
@@ -72,8 +71,7 @@ void writeSets(h5::FileRef file, hid_t meshGroup, const Mesh& mesh) {
   for (const auto& [name, set] : mesh.faceSets) {
     h5::Group group = h5::createGroup(file, faceSets.get(), layout::linkName(name));
     h5::writeAttribute(file, group.get(), "name", name);
-    h5::writeAttribute(file, group.get(), "cell_type",
-                       std::string(layout::cellTypeLabel(set.type)));
+    h5::writeAttribute(file, group.get(), "cell_type", std::string(toString(set.type)));
     writeConnectivity(file, group.get(), "connectivity", set.connectivity);
     h5::writeInts(file, group.get(), "owner_block", set.ownerBlock.data(), set.ownerBlock.size(),
                   0);
