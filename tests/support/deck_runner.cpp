@@ -57,6 +57,21 @@ Eigen::Vector3d RecordedStep::setReaction(const std::string& name) const {
   throw std::out_of_range("no reaction for set " + name);
 }
 
+StepRecord RecordedStep::record() const {
+  StepRecord view;
+  view.step = step;
+  view.time = time;
+  view.iterations = iterations;
+  view.cutbacks = cutbacks;
+  view.displacement = &displacement;
+  view.reaction = &reaction;
+  view.setReactions = setReactions;
+  if (stress.size() > 0) view.stress = &stress;
+  view.contact = contact;
+  view.energy = energy;
+  return view;
+}
+
 const ContactPairRecord& RecordedStep::pair(const std::string& name) const {
   for (const ContactPairRecord& record : contact) {
     if (record.name == name) return record;

@@ -27,6 +27,9 @@ struct RecordedStep {
 
   Eigen::Vector3d setReaction(const std::string& name) const;
   const ContactPairRecord& pair(const std::string& name) const;
+  // The step as a StepRecord (without restart data), e.g. to feed a ReferenceTracker as the run
+  // command does; its fields point to this step's copies, so it is valid while this step lives.
+  StepRecord record() const;
 };
 
 struct DeckRun {

@@ -50,16 +50,7 @@ end
 // The recorded steps of an in-process run, fed to a tracker as the run command does.
 std::vector<ReferenceResult> trackedResults(const test::DeckRun& run) {
   ReferenceTracker tracker(*run.model);
-  for (const test::RecordedStep& step : run.steps) {
-    StepRecord record;
-    record.step = step.step;
-    record.time = step.time;
-    record.displacement = &step.displacement;
-    record.reaction = &step.reaction;
-    record.setReactions = step.setReactions;
-    record.contact = step.contact;
-    tracker.observe(record);
-  }
+  for (const test::RecordedStep& step : run.steps) tracker.observe(step.record());
   return tracker.results();
 }
 

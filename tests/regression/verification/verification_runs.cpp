@@ -78,17 +78,7 @@ VerifiedRun runVerificationDeck(const std::string& deckPath, const DeckChanges& 
   VerifiedRun verified;
   verified.run = runDeckText(changedDeck(deckPath, changes), deckPath);
   verification::ReferenceTracker tracker(*verified.run.model);
-  for (const RecordedStep& step : verified.run.steps) {
-    StepRecord record;
-    record.step = step.step;
-    record.time = step.time;
-    record.iterations = step.iterations;
-    record.displacement = &step.displacement;
-    record.reaction = &step.reaction;
-    record.setReactions = step.setReactions;
-    record.contact = step.contact;
-    tracker.observe(record);
-  }
+  for (const RecordedStep& step : verified.run.steps) tracker.observe(step.record());
   for (verification::ReferenceResult& result : tracker.results()) {
     verified.errors.emplace(result.quantity, std::move(result));
   }
