@@ -1,5 +1,6 @@
 // Newton iteration of one load step: predictor with the prescribed increment, residual and
 // energy norms per iteration, convergence tests as documented in newton.hpp, optional line search.
+// solve() runs each iteration as named phases over one SolveState (newton_detail), in order.
 #include "solver/newton.hpp"
 
 #include <fmt/format.h>
