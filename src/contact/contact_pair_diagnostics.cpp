@@ -45,7 +45,8 @@ void ContactPair::watchPenetration() {
     // the master body, not in it: its gap is measured to the segment's extension, and its force
     // fades by design. Counted, the slab's side nodes beside a die as wide as the slab made the
     // run report 93 % of the element depth and ask for a stiffer penalty, where the points under
-    // the die reached 11 % (ironing_nts_mu03_equal, docs/verification/sliding.md).
+    // the die reached 11 % (ironing_nts_mu03_equal, predictor=extrapolate; docs/verification/
+    // sliding.md, thirty-ninth session).
     if (freeEdgeFactor(history.xi, point.layout.freeEdges) < 1) continue;
     if (-history.gap > deepestPenetration_) {
       deepestPenetration_ = -history.gap;
