@@ -5,6 +5,7 @@
 #include <limits>
 #include <map>
 
+#include "contact/contact_point.hpp"
 #include "fem/quadrature.hpp"
 
 namespace cc::contact {
@@ -153,6 +154,7 @@ ContactPairRecord pairRecord(const std::string& name, const std::vector<PairPoin
   r.slipIncrement.resize(n);
   r.accumulatedSlip.resize(n);
   r.weight.resize(n);
+  r.edgeShare.resize(n);
   std::map<int, Eigen::Vector3d> nodalForce;  // physical force on the slave side
   for (int i = 0; i < n; ++i) {
     const PairPoint& p = points[i];
@@ -165,6 +167,7 @@ ContactPairRecord pairRecord(const std::string& name, const std::vector<PairPoin
     r.slipIncrement[i] = t.slipIncrement;
     r.accumulatedSlip[i] = p.committed.accumulatedSlip;
     r.weight[i] = t.weight;
+    r.edgeShare[i] = t.valid ? freeEdgeFactor(t.xi, p.layout.freeEdges) : 1.0;
     // Force on the slave body: -(N n - T) w (the opposite of the internal-force contribution).
     const Eigen::Vector3d force =
         t.state == ContactState::Open

@@ -25,7 +25,12 @@ struct ContactPairRecord {
   Eigen::VectorXi state;                // ContactState
   Eigen::VectorXd slipIncrement;        // |Delta rho| of the step while slipping
   Eigen::VectorXd accumulatedSlip;
-  Eigen::VectorXd weight;                                // integration weight (area) of the point
+  Eigen::VectorXd weight;  // integration weight (area) of the point
+  // The share of its force a point keeps beyond a free edge of the master (edge=fade's band,
+  // contact/contact_point.hpp): 1 on the master, below 1 beside it, where the gap is measured to
+  // the master's extension and says nothing of a penetration. Its weight above already carries
+  // the share. In-process only (the verification measures), not written; empty: all 1.
+  Eigen::VectorXd edgeShare;
   Eigen::Vector3d totalForce = Eigen::Vector3d::Zero();  // sum of forces on the slave side
   // Nodal contact forces on the slave nodes (node index, force), for force-ratio plots.
   std::vector<int> slaveNodes;

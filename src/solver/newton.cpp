@@ -34,6 +34,8 @@ struct Norms {
 
 // What one call of solve() carries from iteration to iteration.
 struct SolveState {
+  SolveState(const NewtonStep& solvedStep, const NewtonSpec& solvedSpec)
+      : step(solvedStep), spec(solvedSpec) {}
   const NewtonStep& step;
   const NewtonSpec& spec;
   Eigen::VectorXd prescribedTarget;     // the prescribed dofs' values at step.time
@@ -314,7 +316,7 @@ newton_detail::SolveState Newton::beginSolve(const NewtonStep& step, const Newto
                                              Eigen::VectorXd& displacement) {
   const DofMap& dofs = problem_.dofMap();
   const Eigen::Matrix3Xd& reference = problem_.referenceCoordinates();
-  newton_detail::SolveState s{step, spec};
+  newton_detail::SolveState s(step, spec);
   viscousFactor_ = spec.stabilization;
   // x_n, the configuration the step starts from. A re-solve of the same attempt (after an
   // augmented-Lagrangian update, a later stage of penalty continuation) starts from an earlier

@@ -150,6 +150,25 @@ TEST(ContactMeasures, EqualAreaRadiiAreWithinOneSpacing) {
   EXPECT_NEAR(maxPenetration(record), 1e-3 * peakPressure(record), 1e-15);
 }
 
+// A point beside a free edge of the master (edge=fade's band) has its gap and pressure measured
+// to the master's extension: the largest values must come from the points on the master.
+TEST(ContactMeasures, PointsBesideTheMastersFreeEdgeDoNotSetThePeaks) {
+  const double spacing = 0.05;
+  auto record = gridRecord(40, spacing, 1.0, 0.6, [](double r) { return 2 - r; });
+  const double peak = peakPressure(record), penetration = maxPenetration(record);
+  record.edgeShare.setOnes(record.state.size());
+  const int beside = 5 * 40 + 5;  // at x = y = 0.275: in contact (r < 1)
+  ASSERT_NE(record.state[beside], 0);
+  record.edgeShare[beside] = 0.3;
+  record.normalTraction[beside] = -10 * peak;
+  record.gap[beside] = -10 * penetration;
+  EXPECT_EQ(peakPressure(record), peak);
+  EXPECT_EQ(maxPenetration(record), penetration);
+  record.edgeShare[beside] = 1;  // on the master, the same point sets both
+  EXPECT_EQ(peakPressure(record), 10 * peak);
+  EXPECT_EQ(maxPenetration(record), 10 * penetration);
+}
+
 TEST(ContactMeasures, PressureDeviationIsZeroForUniformPressureOnly) {
   const auto uniform = gridRecord(10, 0.1, 10, 0, [](double) { return 3.0; });
   EXPECT_NEAR(pressureDeviation(uniform), 0, 1e-13);  // round-off of the 100-term mean
