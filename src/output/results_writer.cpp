@@ -404,6 +404,11 @@ void ResultsWriter::writeContact(const StepRecord& step, hid_t stepGroup) {
     h5::writeDoubles(file, id, "slip_increment", pair.slipIncrement.data(), points, 0);
     h5::writeDoubles(file, id, "accumulated_slip", pair.accumulatedSlip.data(), points, 0);
     h5::writeDoubles(file, id, "weight", pair.weight.data(), points, 0);
+    // Empty in a hand-built record: every point on the master.
+    const Eigen::VectorXd edgeShare =
+        pair.edgeShare.size() > 0 ? pair.edgeShare
+                                  : Eigen::VectorXd::Ones(static_cast<Eigen::Index>(points));
+    h5::writeDoubles(file, id, "edge_share", edgeShare.data(), points, 0);
     const Eigen::VectorXi vertexIds = Eigen::VectorXi::LinSpaced(static_cast<Eigen::Index>(points),
                                                                  0, static_cast<int>(points) - 1);
     h5::writeInts(file, id, layout::kVertexIds, vertexIds.data(), points, 0);

@@ -165,8 +165,8 @@ std::string XdmfWriter::contactGrid(const std::string& pair, long points,
   for (const PointField& field :
        {PointField{"gap", "Scalar", false, 1}, PointField{"normal_traction", "Scalar", false, 1},
         PointField{"tangential_traction", "Vector", false, 3},
-        PointField{"state", "Scalar", true, 1},
-        PointField{"accumulated_slip", "Scalar", false, 1}}) {
+        PointField{"state", "Scalar", true, 1}, PointField{"accumulated_slip", "Scalar", false, 1},
+        PointField{"edge_share", "Scalar", false, 1}}) {
     const std::string dims = field.components == 1 ? count : count + " 3";
     grid += attributeOpen(field.name, field.type, "Node");
     grid += field.integer ? dataItem(dims, "Int", kIntPrecision, pairPath + field.name)

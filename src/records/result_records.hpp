@@ -29,7 +29,8 @@ struct ContactPairRecord {
   // The share of its force a point keeps beyond a free edge of the master (edge=fade's band,
   // contact/contact_point.hpp): 1 on the master, below 1 beside it, where the gap is measured to
   // the master's extension and says nothing of a penetration. Its weight above already carries
-  // the share. In-process only (the verification measures), not written; empty: all 1.
+  // the share. Written as "edge_share" (a ParaView threshold at 1 keeps the points on the
+  // master); empty (a hand-built record): all 1.
   Eigen::VectorXd edgeShare;
   Eigen::Vector3d totalForce = Eigen::Vector3d::Zero();  // sum of forces on the slave side
   // Nodal contact forces on the slave nodes (node index, force), for force-ratio plots.

@@ -19,7 +19,10 @@ test checks that none of them is deeper than the deepest under the die. Checked:
     element depth, under it the deepest stays below;
   - the stored deepest penetration (restart table, last step) equals the deepest under the die
     to 1e-12 (the code before the fix stored the gap beside it);
-  - the run ends without the penetration warning.
+  - the run ends without the penetration warning;
+  - the results file's `edge_share` tells the two apart as the geometry does: 1 at every closed
+    point under the die, below 1 at every closed point beside it (what a ParaView user filters
+    on, docs/output-format.md).
 About 15 s on one thread."""
 import os
 import sys
@@ -49,6 +52,7 @@ check(f"completed: {STEPS} steps" in r.stdout, "the run did not complete:\n" + r
 
 path = os.path.join(args.scratch, f"ironing_nts_mu03_equal_{STEPS}.h5")
 under = beside = on_border = 0.0
+share_under_not_1 = share_beside_1 = beside_points = 0
 with h5py.File(path, "r") as f:
     coordinates = f["mesh/coordinates"][()]
     die_bottom = f["mesh/node_sets/die_bottom/nodes"][()]
@@ -62,6 +66,7 @@ with h5py.File(path, "r") as f:
         closed = pair["state"][()] != 0
         y = pair["position"][()][:, 1]
         gap = pair["gap"][()]
+        share = pair["edge_share"][()]
         inside = closed & (y >= low + BORDER) & (y <= high - BORDER)
         outside = closed & ((y < low - BORDER) | (y > high + BORDER))
         border = closed & ~inside & ~outside
@@ -69,6 +74,9 @@ with h5py.File(path, "r") as f:
             under = max(under, float(-gap[inside].min()))
         if outside.any():
             beside = max(beside, float(-gap[outside].min()))
+        share_under_not_1 += int((share[inside] != 1).sum())
+        share_beside_1 += int((share[outside] >= 1).sum())
+        beside_points += int(outside.sum())
         if border.any():
             on_border = max(on_border, float(-gap[border].min()))
     stored = float(f["steps"][steps[-1]]["restart/contact_history/die"][0, DEEPEST_COLUMN])
@@ -83,6 +91,10 @@ check(under < WARNING_SHARE * DEPTH,
 check(on_border < under, f"a point at the die's edge, left out, has the deepest gap {on_border}")
 check(abs(stored - under) <= 1e-12 * under,
       f"the stored deepest penetration is {stored!r}, the deepest under the die {under!r}")
+check(share_under_not_1 == 0,
+      f"{share_under_not_1} closed points under the die have an edge_share other than 1")
+check(beside_points > 0 and share_beside_1 == 0,
+      f"{share_beside_1} of {beside_points} closed points beside the die have edge_share 1")
 check("the penetration reached" not in r.stdout + r.stderr,
       "the run warns of a penetration:\n" + r.stdout[-1500:])
 print("ok")

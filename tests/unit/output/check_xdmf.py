@@ -80,7 +80,7 @@ def check_step(reader, step, expected, first_element):
         check_equal(f"{pair} cell type", cloud.GetCellType(0), VTK_POLY_VERTEX)
         check_equal(f"{pair} positions", [list(cloud.GetPoint(i)) for i in range(points)],
                     values["position"])
-        for field in ("gap", "normal_traction", "state"):
+        for field in ("gap", "normal_traction", "state", "edge_share"):
             stored = [row[0] for row in array_rows(cloud.GetPointData().GetArray(field))]
             check_equal(f"{pair} {field}", stored, [float(v) for v in values[field]])
         check_equal(f"{pair} tangential_traction",

@@ -64,8 +64,8 @@ std::string contactJson(const ContactPairRecord& pair) {
          ",\"tangential_traction\":" + columnsAsRows(pair.tangentialTraction) +
          ",\"state\":" + list(pair.state) + ",\"slip_increment\":" + list(pair.slipIncrement) +
          ",\"accumulated_slip\":" + list(pair.accumulatedSlip) +
-         ",\"weight\":" + list(pair.weight) + ",\"total_force\":" + list(pair.totalForce) +
-         ",\"slave_nodes\":" + list(slaveNodes) +
+         ",\"weight\":" + list(pair.weight) + ",\"edge_share\":" + list(pair.edgeShare) +
+         ",\"total_force\":" + list(pair.totalForce) + ",\"slave_nodes\":" + list(slaveNodes) +
          ",\"slave_nodal_force\":" + columnsAsRows(pair.slaveNodalForce) + "}";
 }
 

@@ -133,6 +133,7 @@ TEST_F(RoundTrip, EveryStepRoundTripsExactly) {
       expectVector(path + "/slip_increment", pair.slipIncrement);
       expectVector(path + "/accumulated_slip", pair.accumulatedSlip);
       expectVector(path + "/weight", pair.weight);
+      expectVector(path + "/edge_share", pair.edgeShare);
       expectVector(path + "/total_force", pair.totalForce);
       EXPECT_EQ(readRawInts(file_, path + "/slave_nodes"), pair.slaveNodes);
       expectTable(path + "/slave_nodal_force", pair.slaveNodalForce);
