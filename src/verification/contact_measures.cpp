@@ -51,6 +51,8 @@ double maxRelativeDeviation(const std::vector<double>& values, double mean) {
 
 }  // namespace
 
+// Every point in contact, beside a free edge too: its weight there carries its share of the
+// force, so the area is the one the force is spread over.
 double contactArea(const ContactPairRecord& pair) {
   double area = 0;
   for (Eigen::Index i = 0; i < pair.state.size(); ++i) {
@@ -86,7 +88,7 @@ double peakPressure(const ContactPairRecord& pair) {
 double centrePressure(const ContactPairRecord& pair, const ModelledPart& part) {
   double nearest = std::numeric_limits<double>::infinity(), pressure = 0;
   for (Eigen::Index i = 0; i < pair.state.size(); ++i) {
-    if (!inContact(pair, i)) continue;
+    if (!inContactOnMaster(pair, i)) continue;
     const double dx = pair.position(0, i) - part.x0, dy = pair.position(1, i) - part.y0;
     const double distance = part.planeStrain ? std::abs(dx) : std::hypot(dx, dy);
     if (distance < nearest) {
@@ -108,14 +110,14 @@ double maxPenetration(const ContactPairRecord& pair) {
 double pressureDeviation(const ContactPairRecord& pair) {
   double force = 0, area = 0;
   for (Eigen::Index i = 0; i < pair.state.size(); ++i) {
-    if (!inContact(pair, i)) continue;
+    if (!inContactOnMaster(pair, i)) continue;
     force -= pair.normalTraction[i] * pair.weight[i];
     area += pair.weight[i];
   }
   if (area == 0) return 0;
   std::vector<double> pressures;
   for (Eigen::Index i = 0; i < pair.state.size(); ++i) {
-    if (inContact(pair, i)) pressures.push_back(-pair.normalTraction[i]);
+    if (inContactOnMaster(pair, i)) pressures.push_back(-pair.normalTraction[i]);
   }
   return maxRelativeDeviation(pressures, force / area);
 }

@@ -36,13 +36,14 @@ double equivalentHalfWidth(double area, const ModelledPart& part);
 // Largest contact pressure -N over the points in contact on the master, not beside its free
 // edges (N <= 0 in compression, eq. (62); ContactPairRecord::edgeShare).
 double peakPressure(const ContactPairRecord& pair);
-// Contact pressure -N at the point in contact nearest to the load axis, where the Hertz pressure
-// peaks. Unlike peakPressure it ignores spurious spikes at the contact edge.
+// Contact pressure -N at the point in contact on the master nearest to the load axis, where the
+// Hertz pressure peaks. Unlike peakPressure it ignores spurious spikes at the contact edge.
 double centrePressure(const ContactPairRecord& pair, const ModelledPart& part);
 // Largest penetration -g over the points in contact on the master (as peakPressure).
 double maxPenetration(const ContactPairRecord& pair);
-// max |p_i - p_mean| / p_mean over the points in contact, p_mean the weighted mean pressure:
-// zero when the pair transmits a uniform pressure exactly (the contact patch test).
+// max |p_i - p_mean| / p_mean over the points in contact on the master, p_mean their weighted
+// mean pressure: zero when the pair transmits a uniform pressure exactly (the contact patch
+// test).
 double pressureDeviation(const ContactPairRecord& pair);
 
 // Tributary area of each node of a face set, the integral of its shape function over the faces

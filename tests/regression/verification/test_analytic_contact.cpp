@@ -164,6 +164,11 @@ TEST(ContactMeasures, PointsBesideTheMastersFreeEdgeDoNotSetThePeaks) {
   record.gap[beside] = -10 * penetration;
   EXPECT_EQ(peakPressure(record), peak);
   EXPECT_EQ(maxPenetration(record), penetration);
+  // Nor is such a point the centre, however near the axis it lies: the next one on the master is.
+  const ModelledPart quarter{0.25, 1};
+  record.edgeShare[0] = 0.3;  // the point nearest to the axis, at (0.5, 0.5) spacing
+  record.normalTraction[0] = -10 * peak;
+  EXPECT_NEAR(centrePressure(record, quarter), 2 - std::hypot(0.5 * spacing, 1.5 * spacing), 1e-14);
   record.edgeShare[beside] = 1;  // on the master, the same point sets both
   EXPECT_EQ(peakPressure(record), 10 * peak);
   EXPECT_EQ(maxPenetration(record), 10 * penetration);
@@ -175,6 +180,10 @@ TEST(ContactMeasures, PressureDeviationIsZeroForUniformPressureOnly) {
   auto bumped = uniform;
   bumped.normalTraction[7] *= 1.01;  // one point of 100 is 1% above: the mean rises by 0.01%
   EXPECT_NEAR(pressureDeviation(bumped), (1.01 - 1.0001) / 1.0001, 1e-12);
+  // The same point beside a free edge of the master: neither the list nor the mean takes it.
+  bumped.edgeShare.setOnes(bumped.state.size());
+  bumped.edgeShare[7] = 0.5;
+  EXPECT_NEAR(pressureDeviation(bumped), 0, 1e-13);
   // A strip of a plane-strain model: half-width from the area.
   EXPECT_NEAR(equivalentHalfWidth(contactArea(uniform), {0.5, 1.0}), 1.0, 1e-12);
 }
