@@ -14,8 +14,8 @@ import h5py
 import numpy as np
 
 CONTACT_FIELDS = ["position", "gap", "normal_traction", "tangential_traction", "state",
-                  "slip_increment", "accumulated_slip", "weight", "edge_share", "total_force", "slave_nodes",
-                  "slave_nodal_force"]
+                  "slip_increment", "accumulated_slip", "weight", "edge_share", "total_force",
+                  "slave_nodes", "slave_nodal_force"]
 CONVERGENCE_FIELDS = ["step", "attempt", "iteration", "time", "residual", "relative_residual",
                       "energy", "relative_energy", "wall_seconds"]
 

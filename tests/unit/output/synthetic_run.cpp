@@ -91,7 +91,7 @@ ContactPairRecord syntheticPair(const std::string& name, int step, int points, i
     pair.slipIncrement(p) = std::abs(wave(step, offset + p, 8, 1e-4));
     pair.accumulatedSlip(p) = step * std::abs(wave(1, offset + p, 8, 1e-4));
     pair.weight(p) = 0.25 + 0.01 * p;
-    pair.edgeShare(p) = p % 4 == 3 ? 0.125 * p : 1.0;  // some points beside a free edge
+    pair.edgeShare(p) = p % 4 == 3 ? 1.0 / (2 + p) : 1.0;  // some points beside a free edge
     pair.slaveNodes.push_back(baseNode(p % (kBaseCells + 1), p / (kBaseCells + 1), 1));
   }
   pair.totalForce = Eigen::Vector3d(wave(step, offset, 9, 50), wave(step, offset, 10, 50),
