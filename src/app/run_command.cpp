@@ -564,15 +564,18 @@ int runCommand(const RunOptions& options) {
                 summary.totalCutbacks, rankZeroValue(group, seconds), summary.message,
                 observer.linearSolver(), work.linear.krylovIterations, work.linear.krylovFallbacks,
                 summary.lineSearchRetries, summary.discardedIterations, summary.continuationRetries,
-                warnings});
+                summary.stabilizedRetries, warnings});
   if (!writes) return exitCodeOf(summary.outcome);
   if (summary.outcome == RunSummary::Outcome::Completed) {
     // The work of failed attempts (retried with line search or cut back) is not in the
     // iterations of the converged steps; it is said separately.
-    const std::string continued =
+    std::string continued =
         summary.continuationRetries > 0
             ? fmt::format(", {} by penalty continuation", summary.continuationRetries)
             : std::string();
+    if (summary.stabilizedRetries > 0) {
+      continued += fmt::format(", {} with viscous stabilisation", summary.stabilizedRetries);
+    }
     const std::string discarded =
         summary.discardedIterations > 0
             ? fmt::format(" (+{} in failed attempts, {} retried with line search{})",

@@ -108,7 +108,15 @@ std::vector<ValueDecl> newtonParameters() {
                       "dissipate this fraction of its work of the loads and supports (the share "
                       "each step's line reports); replaces stabilize=. 0: off")
               .withRange(Range::between(0, true, 1, false))
-              .withDefault(defaultText(defaults.stabilizationShare))};
+              .withDefault(defaultText(defaults.stabilizationShare)),
+          numberValue("stabilize_on_failure",
+                      "viscous stabilisation only where steps fail without it: such a step "
+                      "(after its line-search retry) is solved again at the same step size with "
+                      "the factor C, and its cut-backs and the next steps keep it until "
+                      "grow_after of them in a row converged easily; replaces stabilize= and "
+                      "stabilize_share=. 0: off")
+              .withRange(Range::atLeast(0))
+              .withDefault(defaultText(defaults.stabilizationOnFailure))};
 }
 
 std::vector<ValueDecl> cutbackParameters() {
@@ -162,21 +170,21 @@ void applyNewtonParameters(const ParsedLine& line, NewtonSpec& newton) {
     newton.penaltyContinuation = line.flag("penalty_continuation");
   }
   if (use("aug_inner")) newton.augmentedInnerTolerance = line.number("aug_inner");
-  // One way to set the factor: the last one given replaces the other (a phase's
+  // One way to set the factor: the last one given replaces the others (a phase's
   // stabilize_share= over the newton line's stabilize=, and back).
-  if (use("stabilize") && use("stabilize_share")) {
+  if (int(use("stabilize")) + int(use("stabilize_share")) + int(use("stabilize_on_failure")) > 1) {
     line.fail(line.where(),
-              "give either stabilize=C (the factor) or stabilize_share=F (the "
-              "factor chosen by the run), not both");
+              "give one of stabilize=C (the factor), stabilize_share=F (the factor chosen by "
+              "the run) and stabilize_on_failure=C (the factor for failing steps only)");
   }
-  if (use("stabilize")) {
-    newton.stabilization = line.number("stabilize");
-    newton.stabilizationShare = 0;
-  }
-  if (use("stabilize_share")) {
-    newton.stabilizationShare = line.number("stabilize_share");
-    newton.stabilization = 0;
-  }
+  const auto stabilizeBy = [&newton](double factor, double share, double onFailure) {
+    newton.stabilization = factor;
+    newton.stabilizationShare = share;
+    newton.stabilizationOnFailure = onFailure;
+  };
+  if (use("stabilize")) stabilizeBy(line.number("stabilize"), 0, 0);
+  if (use("stabilize_share")) stabilizeBy(0, line.number("stabilize_share"), 0);
+  if (use("stabilize_on_failure")) stabilizeBy(0, 0, line.number("stabilize_on_failure"));
 }
 
 // The augmented Lagrangian's re-solves start from a converged state whose contact forces the

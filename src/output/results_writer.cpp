@@ -470,6 +470,7 @@ void ResultsWriter::close(const RunTotals& totals) {
     h5::writeAttribute(file, summary.get(), "line_search_retries", totals.lineSearchRetries);
     h5::writeAttribute(file, summary.get(), "discarded_iterations", totals.discardedIterations);
     h5::writeAttribute(file, summary.get(), "continuation_retries", totals.continuationRetries);
+    h5::writeAttribute(file, summary.get(), "stabilized_retries", totals.stabilizedRetries);
     h5::writeAttribute(file, summary.get(), "wall_seconds", totals.wallSeconds);
     h5::writeAttribute(file, summary.get(), "message", totals.message);
     h5::writeAttribute(file, summary.get(), "warnings", totals.warnings);

@@ -43,6 +43,7 @@ struct RunTotals {
   int lineSearchRetries = 0;    // failed plain-Newton attempts retried with line search
   int discardedIterations = 0;  // iterations of failed attempts (not in totalIterations)
   int continuationRetries = 0;  // steps retried by penalty continuation after line search
+  int stabilizedRetries = 0;    // steps retried with viscous stabilisation (stabilize_on_failure)
   // Lines the run ends with about results to distrust (a penalty too soft for the mesh), one
   // per line; empty: none.
   std::string warnings{};

@@ -56,6 +56,11 @@ struct LoadStepper::StepControl {
   int attempts = 0;     // Newton attempts of the step being attempted (cut-backs and retries)
   int convergedInPhase = 0;
   bool singularAtStart = false;  // the last attempt was singular in its first iteration
+  // A step failed without stabilisation (NewtonSpec::stabilizationOnFailure): its cut-backs and
+  // the steps after it are solved with it from their first attempt, until stabilizedEasySteps
+  // of them in a row (the cut-back regrowth's count) converged easily.
+  bool stabilizing = false;
+  int stabilizedEasySteps = 0;
 };
 
 // The state carried from step to step and phase to phase.
@@ -179,7 +184,8 @@ bool LoadStepper::runPhase(const PhaseSpec& givenPhase, double phaseStart, Phase
     NewtonStep step{run.step + 1, control.attempts++, targetTime, run.time};
     step.predictedIncrement = predictedIncrement(phase, targetTime, run);
     NewtonSpec solvedWith = phase.newton;  // the re-solves of augmentStep use the same
-    NewtonResult result = newton_->solve(step, phase.newton, run.displacement);
+    if (control.stabilizing) solvedWith.stabilization = phase.newton.stabilizationOnFailure;
+    NewtonResult result = newton_->solve(step, solvedWith, run.displacement);
     if (lineSearchMayHelp(result) && !phase.newton.lineSearch) {
       // Tried on the same step before the step is cut back (lineSearchMayHelp).
       ++summary_.lineSearchRetries;
@@ -200,7 +206,14 @@ bool LoadStepper::runPhase(const PhaseSpec& givenPhase, double phaseStart, Phase
       // Its solves without the line-search retry's line search (unless the deck has it): plain
       // Newton ends a period-2 cycle after two periods where the line search runs 30 iterations
       // (block at 1e3 eps_ref: 63 against 108 discarded iterations, fifteenth session).
-      result = solveByPenaltyContinuation(phase.newton, retry, run);
+      NewtonSpec continued = phase.newton;
+      continued.stabilization = solvedWith.stabilization;  // a stabilised cut-back's factor
+      result = solveByPenaltyContinuation(continued, retry, run);
+    }
+    if (result.status == NewtonResult::Status::Failed && !control.stabilizing &&
+        phase.newton.stabilizationOnFailure > 0 && !observer_.stopRequested()) {
+      result = solveStabilized(phase, step, result, (target - position) * phase.dt, solvedWith,
+                               control, run);
     }
     if (result.status == NewtonResult::Status::Converged) {
       result = augmentStep(solvedWith, step, result, run);
@@ -217,6 +230,31 @@ bool LoadStepper::runPhase(const PhaseSpec& givenPhase, double phaseStart, Phase
     }
   }
   return true;
+}
+
+// A step that failed without stabilisation, solved again at the same step size with the phase's
+// stabilize_on_failure factor (NewtonSpec::stabilizationOnFailure). It gives the fold of a
+// frictional problem (docs/verification/sliding.md) the tangent it lacks there, and only near
+// there: the steps before it are the quasi-static problem's. Its cut-backs and the next steps
+// keep the factor (control.stabilizing) until grow_after of them in a row converged easily: a
+// step that fails without it at one size fails at the smaller ones too (a fold is no matter of
+// the step size), and on the ironing die at mu = 0.6 a fold region spans tens of steps, each of
+// which would otherwise pay a failed attempt and its line-search retry first.
+NewtonResult LoadStepper::solveStabilized(const PhaseSpec& phase, const NewtonStep& step,
+                                          const NewtonResult& failed, double dt,
+                                          NewtonSpec& solvedWith, StepControl& control,
+                                          PhaseRun& run) {
+  ++summary_.stabilizedRetries;
+  const double factor = phase.newton.stabilizationOnFailure;
+  const NewtonStep retry = retryStep(
+      step, failed, dt,
+      fmt::format("retrying the step with viscous stabilisation (stabilize_on_failure={:g}): ",
+                  factor),
+      control, run);
+  control.stabilizing = true;
+  solvedWith = phase.newton;  // the deck's line search, as in the step's first attempt
+  solvedWith.stabilization = factor;
+  return newton_->solve(retry, solvedWith, run.displacement);
 }
 
 // The phase's first converged step, solved without stabilisation, measures what a step of the
@@ -402,6 +440,15 @@ bool LoadStepper::acceptStep(const PhaseSpec& phase, const NewtonResult& result,
   observer_.convergedResidual(newton_->finalRelativeResidual());
   observer_.stepConverged(run.step, time, result.iterations, control.cutbacks, run.displacement,
                           newton_->internalForce(), write);
+  if (control.stabilizing) {
+    // Past the difficulty, as the regrowth judges it: the next step tries without again.
+    control.stabilizedEasySteps =
+        result.iterations <= cutback.easyIterations ? control.stabilizedEasySteps + 1 : 0;
+    if (control.stabilizedEasySteps >= cutback.growAfter) {
+      control.stabilizing = false;
+      control.stabilizedEasySteps = 0;
+    }
+  }
   control.cutbacks = 0;
   control.attempts = 0;
   control.singularAtStart = false;

@@ -31,6 +31,9 @@ struct RunSummary {
   // Steps of a stiff penalty retried by penalty continuation after their line-search retry
   // failed (load_stepper.cpp).
   int continuationRetries = 0;
+  // Steps retried with viscous stabilisation after failing without it
+  // (NewtonSpec::stabilizationOnFailure).
+  int stabilizedRetries = 0;
   double finalTime = 0;
   std::string message;  // why the run stopped, if it did not complete
 };
@@ -96,6 +99,10 @@ class LoadStepper {
                            PhaseRun& run);
   // Each returns false when the run stops (summary_ says why).
   bool runPhase(const PhaseSpec& givenPhase, double phaseStart, PhaseRun& run);
+  // NewtonSpec::stabilizationOnFailure: the failed step again, stabilised (load_stepper.cpp).
+  NewtonResult solveStabilized(const PhaseSpec& phase, const NewtonStep& step,
+                               const NewtonResult& failed, double dt, NewtonSpec& solvedWith,
+                               StepControl& control, PhaseRun& run);
   // NewtonSpec::stabilizationShare: sets the phase's factor from its first converged step.
   void chooseViscousFactor(PhaseSpec& phase, double time, const PhaseRun& run);
   bool acceptStep(const PhaseSpec& phase, const NewtonResult& result, double time, bool phaseEnd,

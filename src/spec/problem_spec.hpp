@@ -200,6 +200,13 @@ struct NewtonSpec {
   // for a phase that starts there. Never set together with `stabilization` (the deck keeps
   // the last one given).
   double stabilizationShare = 0;
+  // Stabilisation only where steps need it (deck: `stabilize_on_failure=C`; off at 0): a step
+  // whose attempt fails without it (after its line-search retry) is solved again at the same
+  // step size with the factor C, and its cut-backs and the next steps keep it until grow_after
+  // of them in a row converged easily (LoadStepper::solveStabilized). A run need not know where
+  // its fold lies, and the steps before it keep the quasi-static answer exactly. Never set
+  // together with the two above.
+  double stabilizationOnFailure = 0;
 };
 
 // The linear solver of the Newton systems (deck: `solve solver=...`, issue 13). Auto keeps the

@@ -127,8 +127,14 @@ std::vector<ErrorCase> valueCases() {
       {"StabilizeShareOfOne", replaced(6, "  newton stabilize_share=1"), 6, 26,
        "newton: stabilize_share must be >= 0 and < 1, got 1"},
       {"StabilizeTwoWays", replaced(6, "  steps 1 dt=1 stabilize=0.1 stabilize_share=0.01"), 6, 3,
-       "steps: give either stabilize=C (the factor) or stabilize_share=F (the factor chosen by "
-       "the run), not both"},
+       "steps: give one of stabilize=C (the factor), stabilize_share=F (the factor chosen by the "
+       "run) and stabilize_on_failure=C (the factor for failing steps only)"},
+      {"StabilizeOnFailureAndFactor",
+       replaced(6, "  newton stabilize_on_failure=0.1 stabilize=0.1"), 6, 3,
+       "newton: give one of stabilize=C (the factor), stabilize_share=F (the factor chosen by "
+       "the run) and stabilize_on_failure=C (the factor for failing steps only)"},
+      {"NegativeStabilizeOnFailure", replaced(6, "  newton stabilize_on_failure=-1"), 6, 31,
+       "newton: stabilize_on_failure must be >= 0, got -1"},
   };
 }
 

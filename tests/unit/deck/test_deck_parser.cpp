@@ -56,7 +56,8 @@ const ProblemSpec& completeSpec() {
 }
 
 // The viscous factor is set one way at a time: a phase's stabilize_share= replaces the newton
-// line's stabilize= for that phase only, and a later newton line's stabilize= the share.
+// line's stabilize= for that phase only, and a later newton line's stabilize= the share;
+// stabilize_on_failure= likewise.
 TEST(DeckParser, StabilizeAndStabilizeShareReplaceEachOther) {
   const ProblemSpec spec = parseDeckText(kMinimalDeck.substr(0, kMinimalDeck.find("solve")) +
                                              "solve\n"
@@ -66,14 +67,21 @@ TEST(DeckParser, StabilizeAndStabilizeShareReplaceEachOther) {
                                              "  steps 1 dt=1\n"
                                              "  newton stabilize_share=0.03\n"
                                              "  steps 1 dt=1\n"
+                                             "  steps 1 dt=1 stabilize_on_failure=0.04\n"
+                                             "  newton stabilize_on_failure=0.05\n"
+                                             "  steps 1 dt=1\n"
+                                             "  steps 1 dt=1 stabilize=0.06\n"
                                              "end\n",
                                          virtualDeckPath());
-  ASSERT_EQ(spec.phases.size(), 4u);
-  const double factors[] = {0.01, 0, 0.01, 0}, shares[] = {0, 0.02, 0, 0.03};
-  for (std::size_t i = 0; i < 4; ++i) {
+  ASSERT_EQ(spec.phases.size(), 7u);
+  const double factors[] = {0.01, 0, 0.01, 0, 0, 0, 0.06};
+  const double shares[] = {0, 0.02, 0, 0.03, 0, 0, 0};
+  const double onFailure[] = {0, 0, 0, 0, 0.04, 0.05, 0};
+  for (std::size_t i = 0; i < 7; ++i) {
     SCOPED_TRACE(i);
     EXPECT_EQ(spec.phases[i].newton.stabilization, factors[i]);
     EXPECT_EQ(spec.phases[i].newton.stabilizationShare, shares[i]);
+    EXPECT_EQ(spec.phases[i].newton.stabilizationOnFailure, onFailure[i]);
   }
 }
 

@@ -3,7 +3,8 @@
 // that nothing supports, which without it has a singular tangent and with it must move so that
 // the viscous forces balance the load (the elastic forces of a free body sum to zero), and
 // whose energy balance must account for the viscous work; and the factor a run chooses from
-// `stabilize_share`, against one counted from a clamped cube's first step by hand.
+// `stabilize_share`, against one counted from a clamped cube's first step by hand; and
+// `stabilize_on_failure`, against the runs with the factor given and without it.
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
@@ -211,6 +212,46 @@ TEST(ViscousStabilization, AShareSetsTheFactorFromThePhasesFirstStep) {
   const DeckRun plain = runDeckText(clampedCubeDeck("  steps 4 dt=0.25\n"), virtualPath());
   EXPECT_LT(chosen.steps[1].displacement.row(2).maxCoeff(),
             plain.steps[1].displacement.row(2).maxCoeff());
+}
+
+// stabilize_on_failure=C: a step is stabilised only after it failed without, and the steps
+// after it until grow_after (3) of them converged easily. The free cube's every step is
+// singular without it: step 1 fails and is retried with the factor, steps 2-3 keep it, step 3
+// is the third easy one, so step 4 tries without again, fails and is retried. Every step is
+// then solved with the factor from the same start as in the run with stabilize=C, whose steps
+// the closed form above checks.
+TEST(ViscousStabilization, OnFailureAFreeCubeIsCarriedAsWithTheFactorGiven) {
+  const DeckRun retried =
+      runDeckText(freeCubeDeck("  newton stabilize_on_failure=0.5\n"), virtualPath());
+  ASSERT_EQ(retried.summary.outcome, RunSummary::Outcome::Completed) << retried.summary.message;
+  EXPECT_EQ(retried.summary.stabilizedRetries, 2);
+  EXPECT_EQ(retried.summary.totalCutbacks, 0);
+  const DeckRun given = runDeckText(freeCubeDeck("  newton stabilize=0.5\n"), virtualPath());
+  ASSERT_EQ(retried.steps.size(), given.steps.size());
+  for (std::size_t k = 0; k < given.steps.size(); ++k) {
+    SCOPED_TRACE(k + 1);
+    EXPECT_EQ(retried.steps[k].iterations, given.steps[k].iterations);
+    EXPECT_LT((retried.steps[k].displacement - given.steps[k].displacement).norm(),
+              1e-12 * given.steps[k].displacement.norm());
+    EXPECT_NEAR(retried.steps[k].energy.stabilizationDissipation,
+                given.steps[k].energy.stabilizationDissipation,
+                1e-12 * given.steps[k].energy.stabilizationDissipation);
+  }
+}
+
+// A step that converges without stabilisation is the quasi-static problem's, bit for bit.
+TEST(ViscousStabilization, OnFailureAStepThatConvergesIsNotStabilized) {
+  const DeckRun retried = runDeckText(
+      clampedCubeDeck("  newton stabilize_on_failure=0.5\n  steps 4 dt=0.25\n"), virtualPath());
+  const DeckRun plain = runDeckText(clampedCubeDeck("  steps 4 dt=0.25\n"), virtualPath());
+  ASSERT_EQ(retried.summary.outcome, RunSummary::Outcome::Completed);
+  EXPECT_EQ(retried.summary.stabilizedRetries, 0);
+  ASSERT_EQ(retried.steps.size(), 4u);
+  for (std::size_t k = 0; k < 4; ++k) {
+    SCOPED_TRACE(k + 1);
+    EXPECT_EQ(retried.steps[k].displacement, plain.steps[k].displacement);
+    EXPECT_EQ(retried.steps[k].energy.stabilizationDissipation, 0.0);
+  }
 }
 
 }  // namespace
