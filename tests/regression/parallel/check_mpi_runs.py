@@ -16,9 +16,10 @@
   from the process-summed tangent products), and a restart on 2 processes from step 8 of that
   file (its restart data carry the step's increment) continues as the uninterrupted serial run.
 --case stabilize: the crossing deck with viscous stabilisation (`newton stabilize=1e-3`, then
-  `stabilize_share=0.01`, whose factor each process chooses from the replicated state) on 2
-  processes: the serial run's steps, iterations and forces, and its energy account with the
-  stabilisation's work (each process adds the viscous forces of the elements it owns).
+  `stabilize_share=0.01`, whose factor each process chooses from the replicated state, then
+  `maxit=4 stabilize_on_failure=1e-3`, whose retries and cut-backs every process must decide
+  alike) on 2 processes: the serial run's steps, iterations and forces, and its energy account
+  with the stabilisation's work (each process adds the viscous forces of the elements it owns).
 --case facets: the faceted ironing die (input/stress/ironing/ironing_sts_mu03_wide.deck, 30
   steps) with `predictor=extrapolate line_search=yes` on 2 processes: the serial run's steps,
   iterations and forces. Its line search measures trials over facet edges against the attempt's
@@ -369,10 +370,19 @@ def predictor_case(args):
 
 
 def stabilize_case(args):
-    for option in ("stabilize=1e-3", "stabilize_share=0.01"):
+    # maxit=4 makes steps fail without stabilisation, so that stabilize_on_failure retries them,
+    # cuts them back stabilised and lets later steps go without it: every process must take
+    # the same decisions (the steps' iterations and cut-backs are compared).
+    for option in ("stabilize=1e-3", "stabilize_share=0.01",
+                   "maxit=4 stabilize_on_failure=1e-3"):
         deck = crossing_variant(args, "crossing_stabilize", option)
         serial, distributed, count, worst = serial_and_two(args, deck)
         compare_energy(serial, distributed, ENERGIES + ("stabilization_dissipation",))
+        if "on_failure" in option:
+            with h5py.File(serial, "r") as one, h5py.File(distributed, "r") as two:
+                retries = [int(f["summary"].attrs["stabilized_retries"]) for f in (one, two)]
+            check(retries[0] > 0 and retries[0] == retries[1],
+                  f"{option}: steps retried with stabilisation {retries} (serial, 2 processes)")
         with h5py.File(serial, "r") as h5:
             energy = h5["steps"][step_names(h5)[-1]]["energy"].attrs
             share = energy["stabilization_dissipation"] / energy["external_work"]
