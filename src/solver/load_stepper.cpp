@@ -46,6 +46,15 @@ double snapped(double position) {
   return std::abs(position - nearest) < kPositionSnap ? nearest : position;
 }
 
+// What an attempt of the phase is solved with: the phase's Newton settings, with the
+// stabilize_on_failure factor while the step control is stabilising
+// (LoadStepper::solveStabilized).
+NewtonSpec attemptSpec(const PhaseSpec& phase, bool stabilizing) {
+  NewtonSpec spec = phase.newton;
+  if (stabilizing) spec.stabilization = phase.newton.stabilizationOnFailure;
+  return spec;
+}
+
 }  // namespace
 
 // Step size and counters of the phase being run.
@@ -183,8 +192,8 @@ bool LoadStepper::runPhase(const PhaseSpec& givenPhase, double phaseStart, Phase
     const double targetTime = phaseStart + target * phase.dt;
     NewtonStep step{run.step + 1, control.attempts++, targetTime, run.time};
     step.predictedIncrement = predictedIncrement(phase, targetTime, run);
-    NewtonSpec solvedWith = phase.newton;  // the re-solves of augmentStep use the same
-    if (control.stabilizing) solvedWith.stabilization = phase.newton.stabilizationOnFailure;
+    // The re-solves of augmentStep use the same.
+    NewtonSpec solvedWith = attemptSpec(phase, control.stabilizing);
     NewtonResult result = newton_->solve(step, solvedWith, run.displacement);
     if (lineSearchMayHelp(result) && !phase.newton.lineSearch) {
       // Tried on the same step before the step is cut back (lineSearchMayHelp).
@@ -206,9 +215,7 @@ bool LoadStepper::runPhase(const PhaseSpec& givenPhase, double phaseStart, Phase
       // Its solves without the line-search retry's line search (unless the deck has it): plain
       // Newton ends a period-2 cycle after two periods where the line search runs 30 iterations
       // (block at 1e3 eps_ref: 63 against 108 discarded iterations, fifteenth session).
-      NewtonSpec continued = phase.newton;
-      continued.stabilization = solvedWith.stabilization;  // a stabilised cut-back's factor
-      result = solveByPenaltyContinuation(continued, retry, run);
+      result = solveByPenaltyContinuation(attemptSpec(phase, control.stabilizing), retry, run);
     }
     if (result.status == NewtonResult::Status::Failed && !control.stabilizing &&
         phase.newton.stabilizationOnFailure > 0 && !observer_.stopRequested()) {
@@ -252,8 +259,7 @@ NewtonResult LoadStepper::solveStabilized(const PhaseSpec& phase, const NewtonSt
                   factor),
       control, run);
   control.stabilizing = true;
-  solvedWith = phase.newton;  // the deck's line search, as in the step's first attempt
-  solvedWith.stabilization = factor;
+  solvedWith = attemptSpec(phase, true);  // the deck's line search, as in the first attempt
   return newton_->solve(retry, solvedWith, run.displacement);
 }
 
