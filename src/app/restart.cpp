@@ -24,7 +24,8 @@ StartState restartFrom(const std::string& file, int fromStep, Model& model) {
   start.step = point.step;
   start.time = point.time;
   start.displacement = std::move(point.record.displacement);
-  start.stepSize = {point.record.stepFraction, point.record.easySteps};
+  start.stepSize = {point.record.stepFraction, point.record.easySteps, point.record.stabilizing,
+                    point.record.stabilizedEasySteps};
   start.lastIncrement = std::move(point.record.lastIncrement);
   start.lastDt = point.record.lastDt;
   start.viscousFactor = point.record.viscousFactor;
@@ -43,6 +44,8 @@ RestartRecord restartRecordOf(const Model& model, const Eigen::VectorXd& displac
   record.stepFraction = nextStepSize.fraction;
   record.easySteps = nextStepSize.easySteps;
   record.viscousFactor = stepper.chosenViscousFactor();
+  record.stabilizing = nextStepSize.stabilizing;
+  record.stabilizedEasySteps = nextStepSize.stabilizedEasySteps;
   return record;
 }
 

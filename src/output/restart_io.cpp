@@ -45,6 +45,9 @@ void writeRestart(h5::FileRef file, hid_t stepGroup, const RestartRecord& restar
   if (restart.viscousFactor > 0) {
     h5::writeAttribute(file, group.get(), "viscous_factor", restart.viscousFactor);
   }
+  if (restart.stabilizing) {
+    h5::writeAttribute(file, group.get(), "stabilized_easy_steps", restart.stabilizedEasySteps);
+  }
   h5::Group elements = h5::createGroup(file, group.get(), layout::kElementHistoryGroup);
   for (const auto& [name, values] : restart.elementHistory) {
     // An empty history (Hex8) is written as an empty dataset so that the set is still listed;
@@ -104,6 +107,12 @@ RestartPoint readRestart(const std::string& path, int step) {
   }
   if (reader.hasAttribute(group, "viscous_factor")) {
     record.viscousFactor = reader.numberAttribute(group, "viscous_factor");
+  }
+  // Written only while a run stabilises on failure (files without it: not stabilising).
+  if (reader.hasAttribute(group, "stabilized_easy_steps")) {
+    record.stabilizing = true;
+    record.stabilizedEasySteps =
+        static_cast<int>(reader.numberAttribute(group, "stabilized_easy_steps"));
   }
   const std::string elements = group + "/" + layout::kElementHistoryGroup;
   for (const std::string& link : reader.children(elements)) {

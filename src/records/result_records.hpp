@@ -85,6 +85,10 @@ struct RestartRecord {
   // The viscous stabilisation factor the phase chose (NewtonSpec::stabilizationShare; 0: none
   // chosen), so that a restart inside the phase goes on with it rather than choosing anew.
   double viscousFactor = 0;
+  // NewtonSpec::stabilizationOnFailure: whether the next step starts stabilised, and the easy
+  // steps counted towards leaving the stabilisation, so that a restart goes on as the run would.
+  bool stabilizing = false;
+  int stabilizedEasySteps = 0;
 };
 
 struct StepRecord {

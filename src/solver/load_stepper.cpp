@@ -176,12 +176,16 @@ bool LoadStepper::runPhase(const PhaseSpec& givenPhase, double phaseStart, Phase
   chosenViscousFactor_ = 0;
   double position = std::max(0.0, snapped((run.time - phaseStart) / phase.dt));
   if (resumeStepSize_ && position < phase.steps) {
-    // A restart inside this phase continues with the stored step size and chosen factor; at a
-    // phase start the phase begins afresh, as it would have.
+    // A restart inside this phase continues with the stored step size, chosen factor and
+    // stabilisation on failure; at a phase start the phase begins afresh, as it would have.
     resumeStepSize_ = false;
     if (position > 0) {
       control.fraction = nextStepSize_.fraction;
       control.easySteps = nextStepSize_.easySteps;
+      if (phase.newton.stabilizationOnFailure > 0) {
+        control.stabilizing = nextStepSize_.stabilizing;
+        control.stabilizedEasySteps = nextStepSize_.stabilizedEasySteps;
+      }
       if (phase.newton.stabilizationShare > 0 && resumeViscousFactor_ > 0) {
         phase.newton.stabilization = chosenViscousFactor_ = resumeViscousFactor_;
       }
@@ -441,11 +445,6 @@ bool LoadStepper::acceptStep(const PhaseSpec& phase, const NewtonResult& result,
     control.fraction = std::min(1.0, control.fraction * cutback.growFactor);
     control.easySteps = 0;
   }
-  // At a phase end the next phase starts with a full step.
-  nextStepSize_ = phaseEnd ? StepSize{} : StepSize{control.fraction, control.easySteps};
-  observer_.convergedResidual(newton_->finalRelativeResidual());
-  observer_.stepConverged(run.step, time, result.iterations, control.cutbacks, run.displacement,
-                          newton_->internalForce(), write);
   if (control.stabilizing) {
     // Past the difficulty, as the regrowth judges it: the next step tries without again.
     control.stabilizedEasySteps =
@@ -455,6 +454,13 @@ bool LoadStepper::acceptStep(const PhaseSpec& phase, const NewtonResult& result,
       control.stabilizedEasySteps = 0;
     }
   }
+  // At a phase end the next phase starts with a full step, unstabilised.
+  nextStepSize_ = phaseEnd ? StepSize{}
+                           : StepSize{control.fraction, control.easySteps, control.stabilizing,
+                                      control.stabilizedEasySteps};
+  observer_.convergedResidual(newton_->finalRelativeResidual());
+  observer_.stepConverged(run.step, time, result.iterations, control.cutbacks, run.displacement,
+                          newton_->internalForce(), write);
   control.cutbacks = 0;
   control.attempts = 0;
   control.singularAtStart = false;

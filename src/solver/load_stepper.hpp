@@ -39,10 +39,13 @@ struct RunSummary {
 };
 
 // The automatic step size: the next step in units of its phase's dt, and the consecutive easy
-// steps counted towards regrowth.
+// steps counted towards regrowth; with NewtonSpec::stabilizationOnFailure, whether the next
+// step starts stabilised and the easy steps counted towards leaving the stabilisation.
 struct StepSize {
   double fraction = 1;
   int easySteps = 0;
+  bool stabilizing = false;
+  int stabilizedEasySteps = 0;
 };
 
 // Where a run starts: t = 0 and zero displacement, or a restart from a stored step (with the

@@ -22,4 +22,20 @@ inline std::string clampedCubeDeck(const std::string& solveLines) {
          solveLines + "end\n";
 }
 
+// The same cube with no support at all, pushed in z by a total force on its top face: a free
+// body, whose tangent is singular without viscous stabilisation. newtonLine: empty or a
+// `newton` line ending in a newline.
+inline std::string freeCubeDeck(const std::string& newtonLine, const std::string& force = "10*t",
+                                const std::string& steps = "4 dt=0.25") {
+  return "mesh \"" + std::string(COVCONTACT_SOURCE_DIR) +
+         "/meshes/cube.geo\" n=2\n"
+         "material m neohooke E=100 nu=0.3\n"
+         "elements cube hex8 material=m\n"
+         "load zmax fz \"" +
+         force +
+         "\" total\n"
+         "solve\n" +
+         newtonLine + "  steps " + steps + "\nend\n";
+}
+
 }  // namespace cc::test

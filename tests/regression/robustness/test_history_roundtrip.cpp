@@ -183,6 +183,15 @@ double chosenFactor(const ResultsReader& reader, int step) {
                                 "viscous_factor");
 }
 
+// Runs `directory`/cube.deck to full.h5, and continued from its step 1 to continued.h5.
+void runAndContinueFromStep1(const std::string& directory) {
+  const CommandResult full = runCovcontact("run -q --threads 1 cube.deck -o full.h5", directory);
+  ASSERT_EQ(full.exitCode, 0) << full.error;
+  const CommandResult continued = runCovcontact(
+      "run -q --threads 1 cube.deck --restart full.h5 --from-step 1 -o continued.h5", directory);
+  ASSERT_EQ(continued.exitCode, 0) << continued.error;
+}
+
 // A phase with `stabilize_share` chooses its viscous factor after its first step. The factor is
 // restart data, from the step that chose it on: continued from step 1, the run must go on with
 // it and end exactly where the uninterrupted run ends. Choosing anew would solve step 2
@@ -190,11 +199,7 @@ double chosenFactor(const ResultsReader& reader, int step) {
 TEST(History, AChosenViscousFactorIsRestartData) {
   const std::string directory = scratchDirectory("chosen_viscous_factor");
   writeClampedCubeDeck(directory, "cube.deck", "  steps 6 dt=0.25 stabilize_share=0.05\n");
-  const CommandResult full = runCovcontact("run -q --threads 1 cube.deck -o full.h5", directory);
-  ASSERT_EQ(full.exitCode, 0) << full.error;
-  const CommandResult continued = runCovcontact(
-      "run -q --threads 1 cube.deck --restart full.h5 --from-step 1 -o continued.h5", directory);
-  ASSERT_EQ(continued.exitCode, 0) << continued.error;
+  ASSERT_NO_FATAL_FAILURE(runAndContinueFromStep1(directory));
 
   const ResultsReader fullReader(directory + "/full.h5");
   const ResultsReader continuedReader(directory + "/continued.h5");
@@ -226,6 +231,42 @@ TEST(History, AFactorChosenAfterARestartCountsTheStepsWorkWithItsOwnForce) {
   const double uninterrupted = chosenFactor(ResultsReader(directory + "/full.h5"), 3);
   const double afterRestart = chosenFactor(ResultsReader(directory + "/continued.h5"), 3);
   EXPECT_NEAR(afterRestart / uninterrupted, 7.5 / 6.25, 1e-12);
+}
+
+// stabilize_on_failure: the free cube (singular without stabilisation) fails at step 1 and is
+// retried stabilised; steps 2 and 3 keep the factor, step 3 is the third easy one, so step 4
+// tries without it, fails and is retried; and so on: retries at steps 1, 4 and 7 of 8. Whether
+// the next step starts stabilised is restart data. Continued from step 1, the run must retry
+// only at steps 4 and 7, as the uninterrupted run did; starting step 2 without the factor
+// would retry at 2, 5 and 8. Every step is solved stabilised from the same state in both, so
+// the steps themselves must agree.
+TEST(History, StabilisationOnFailureIsRestartData) {
+  const std::string directory = scratchDirectory("stabilize_on_failure");
+  std::ofstream(directory + "/cube.deck")
+      << freeCubeDeck("  newton stabilize_on_failure=0.5\n", "10*t", "8 dt=0.125");
+  ASSERT_NO_FATAL_FAILURE(runAndContinueFromStep1(directory));
+
+  const ResultsReader fullReader(directory + "/full.h5");
+  const ResultsReader continuedReader(directory + "/continued.h5");
+  EXPECT_EQ(fullReader.numberAttribute("/summary", "stabilized_retries"), 3);
+  EXPECT_EQ(continuedReader.numberAttribute("/summary", "stabilized_retries"), 2);
+  const auto restartGroup = [](int step) {
+    return layout::stepGroupPath(step) + "/" + layout::kRestartGroup;
+  };
+  // After step 1 one easy stabilised step is counted; after step 3 the run left the factor.
+  EXPECT_EQ(fullReader.numberAttribute(restartGroup(1), "stabilized_easy_steps"), 1);
+  EXPECT_FALSE(fullReader.hasAttribute(restartGroup(3), "stabilized_easy_steps"));
+  for (int step = 2; step <= 8; ++step) {
+    SCOPED_TRACE(step);
+    const std::string path = layout::stepGroupPath(step);
+    EXPECT_EQ(continuedReader.numberAttribute(path, "iterations"),
+              fullReader.numberAttribute(path, "iterations"));
+    const Eigen::MatrixXd expected = fullReader.readMatrix(path + "/" + layout::kDisplacement);
+    EXPECT_LT((continuedReader.readMatrix(path + "/" + layout::kDisplacement) - expected)
+                  .cwiseAbs()
+                  .maxCoeff(),
+              1e-12 * expected.cwiseAbs().maxCoeff());
+  }
 }
 
 }  // namespace

@@ -70,22 +70,6 @@ TEST(ViscousStabilization, ForceAndTangentOfOneElement) {
               expected.dot(current.col(3) - previous.col(3)), 1e-15);
 }
 
-// The unit cube (2 x 2 x 2 uniform Hex8) with no support at all, pushed in z by a total
-// force on its top face: a free body.
-std::string freeCubeDeck(const std::string& newtonLine, const std::string& force = "10*t",
-                         const std::string& steps = "4 dt=0.25") {
-  return "mesh \"../../../meshes/cube.geo\" n=2\n"
-         "material m neohooke E=100 nu=0.3\n"
-         "elements cube hex8 material=m\n"
-         "load zmax fz \"" +
-         force +
-         "\" total\n"
-         "solve\n" +
-         newtonLine + "  steps " + steps +
-         "\n"
-         "end\n";
-}
-
 std::string virtualPath() {
   return std::string(COVCONTACT_SOURCE_DIR) + "/tests/unit/model/free_cube.deck";
 }
