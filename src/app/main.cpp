@@ -84,7 +84,8 @@ int main(int argc, char** argv) {
   runCommand->add_flag("-q,--quiet", run.quiet, "Print only the final summary");
   runCommand->add_flag("--newton-log", run.newtonLog,
                        "Print every Newton iteration: residual, energy, and the contact points "
-                       "that changed state or master segment since the previous iteration");
+                       "that changed state or master segment since the previous iteration; "
+                       "with an iterative linear solver, its Krylov iterations and tolerance");
   runCommand
       ->add_option("--check-tangent", run.checkTangent,
                    "STEP:ITERATION: compare the assembled tangent with central differences of "

@@ -144,6 +144,10 @@ struct IterationRecord {
   double relativeEnergy = 0;
   double wallSeconds = 0;    // since the start of the run
   ContactChanges contact{};  // since the previous iteration (iteration 1: since the last step's)
+  // An iterative linear solve: the relative residual this iteration's solve was asked for
+  // (Newton's forcing term) and the Krylov iterations it took; 0 for a direct solve.
+  double krylovTolerance = 0;
+  int krylovIterations = 0;
 };
 
 struct CutbackRecord {

@@ -32,6 +32,13 @@ struct Norms {
   double unscaledEnergy() const { return std::ldexp(energy, -energyScale); }
 };
 
+// An iterative linear solve: the relative residual asked (the forcing term) and the Krylov
+// iterations it took.
+struct KrylovSolve {
+  double tolerance = 0;
+  int iterations = 0;
+};
+
 // What one call of solve() carries from iteration to iteration.
 struct SolveState {
   SolveState(const NewtonStep& solvedStep, const NewtonSpec& solvedSpec)
@@ -44,6 +51,7 @@ struct SolveState {
   bool undriven = false;
   Norms norms;
   double previousResidual = 0, forcing = kForcingMax;
+  KrylovSolve krylov;  // this iteration's iterative solve (zero for a direct one)
   std::vector<std::uint64_t> activeSets;  // signature of the active set, per iteration
   std::vector<double> residualHistory;    // ||rhs|| per iteration
   // With an extrapolating predictor: the predicted free increment and K_ff times it (the
@@ -455,7 +463,9 @@ std::optional<NewtonResult> Newton::solveCorrection(newton_detail::SolveState& s
     linear_.setLayout({dofs.freeDofs(), current_, problem_.nodeOwners()});
     linear_.factorize(tangent_);
     if (linear_.iterative()) {
-      if (iteration > 1) {
+      if (iteration == 1) {
+        s.forcing = s.step.attempt > 0 ? kRetryFirstForcing : kForcingMax;
+      } else {
         const double ratio = s.norms.residual / s.previousResidual;
         s.forcing = std::min({kForcingMax, kForcingGamma * ratio * ratio,
                               kForcingResidualFactor * s.norms.relativeResidual()});
@@ -464,6 +474,9 @@ std::optional<NewtonResult> Newton::solveCorrection(newton_detail::SolveState& s
       linear_.setForcing(s.forcing);
     }
     du = linear_.solve(rhs);
+    s.krylov = linear_.iterative()
+                   ? newton_detail::KrylovSolve{s.forcing, linear_.lastSolve().iterations}
+                   : newton_detail::KrylovSolve{};
   } catch (const SolveInterrupted&) {
     return interrupted(iteration);
   } catch (const StepFailure& failure) {
@@ -564,7 +577,8 @@ NewtonResult Newton::solve(const NewtonStep& step, const NewtonSpec& spec,
 
     observer_.iteration({step.step, step.attempt, iteration, step.time, norms.residual,
                          norms.relativeResidual(), norms.unscaledEnergy(), norms.relativeEnergy(),
-                         secondsSince(runStart_), it.changes});
+                         secondsSince(runStart_), it.changes, s.krylov.tolerance,
+                         s.krylov.iterations});
     if (atRoundoff || convergedAfterSolve(spec, norms, iteration)) {
       return finishConverged(s, displacement, iteration);
     }

@@ -126,6 +126,8 @@ class TangentSolver {
   Eigen::VectorXd solve(const Eigen::VectorXd& rhs);
   // True when the next solve is iterative (Newton then sets a forcing term).
   bool iterative() const { return active_ && active_->iterative(); }
+  // The last iterative solve's report (empty after a direct one).
+  KrylovReport lastSolve() const { return active_ ? active_->lastSolve() : KrylovReport{}; }
 
   // Sum over all backends.
   LinearSolverStatistics statistics() const;

@@ -3,7 +3,9 @@ test script:
 
     step K  t = T of END  N iterations  |R|/|R0| = ...                     (a converged step)
       step K attempt A iteration I  t = T  |R|/|R0| = ...  contact: C active, S changed state,
-      G changed segment                                                (--newton-log, one line)
+      G changed segment[  Krylov: K iterations to TOL]                 (--newton-log, one line;
+                                                                        the Krylov part for
+                                                                        iterative solves)
 
 Scripts in tests/regression/* import it after `sys.path.insert(0, SUPPORT)`, SUPPORT being
 this folder (see `support_path`)."""
@@ -15,7 +17,8 @@ STEP_LINE = re.compile(r"^step (\d+)\s+t = (\S+) of (\S+)\s+(\d+) iterations", r
 # One Newton iteration of --newton-log: step, attempt, iteration, active points, points that
 # changed state, points that changed segment.
 ITERATION_LINE = re.compile(r"^\s+step (\d+) attempt (\d+) iteration (\d+) .*contact: (\d+) "
-                            r"active, (\d+) changed state, (\d+) changed segment$", re.M)
+                            r"active, (\d+) changed state, (\d+) changed segment"
+                            r"(?:  Krylov: \d+ iterations to \S+)?$", re.M)
 
 
 def converged_steps(stdout):

@@ -51,6 +51,46 @@ TEST(Newton, PrescribedEndOfLinearChainSolvedByThePredictor) {
   }
 }
 
+// The relative residual an iterative linear solve is asked for (newton.hpp): kForcingMax at the
+// first iteration of a step's first attempt, kRetryFirstForcing at the first iteration of an
+// attempt after a failed one (on the refined ironing die the first solve at 1e-3 set a path on
+// which Newton stalled, retries included), and from the second iteration on Eisenstat and
+// Walker's choice, at most 100 times the relative residual. A direct solve reports none.
+TEST(Newton, TheFirstIterativeSolveOfARetryIsAskedForMore) {
+  for (const int attempt : {0, 1}) {
+    SCOPED_TRACE(attempt);
+    // Pulled by an end force that stretches each spring by about 1: several iterations.
+    SpringChain chain(5, SpringLaw::cubic(2.0, 1.0), {}, [](double t) { return 4.0 * t; });
+    RecordingObserver observer;
+    LinearSolverSpec amg;
+    amg.method = LinearSolverSpec::Method::Amg;
+    Newton newton(chain, observer, Newton::Clock::now(), amg);
+    Eigen::VectorXd u = Eigen::VectorXd::Zero(3 * 6);
+    const NewtonResult result = newton.solve({1, attempt, 1.0, 0.0}, NewtonSpec{}, u);
+    ASSERT_EQ(result.status, NewtonResult::Status::Converged) << result.message;
+    ASSERT_GE(observer.iterations.size(), 3u);
+    EXPECT_EQ(observer.iterations[0].krylovTolerance,
+              attempt == 0 ? kForcingMax : kRetryFirstForcing);
+    for (std::size_t k = 0; k < observer.iterations.size(); ++k) {
+      const IterationRecord& r = observer.iterations[k];
+      EXPECT_GT(r.krylovIterations, 0);
+      if (k > 0) {
+        EXPECT_LE(r.krylovTolerance, kForcingResidualFactor * r.relativeResidual * (1 + 1e-12));
+        EXPECT_GE(r.krylovTolerance, kForcingMin);
+      }
+    }
+  }
+  SpringChain chain(5, SpringLaw::cubic(2.0, 1.0), {}, [](double t) { return 4.0 * t; });
+  RecordingObserver observer;
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(3 * 6);
+  ASSERT_EQ(solveStep(chain, observer, NewtonSpec{}, u, 1.0).status,
+            NewtonResult::Status::Converged);
+  for (const IterationRecord& r : observer.iterations) {
+    EXPECT_EQ(r.krylovTolerance, 0.0);
+    EXPECT_EQ(r.krylovIterations, 0);
+  }
+}
+
 // The configuration a step starts from (AssemblyState::previous, x_n of the viscous
 // stabilisation): a re-solve of the same attempt starts from the first solve's solution but
 // keeps the first solve's x_n; a new attempt starts afresh.
