@@ -57,19 +57,17 @@ NewtonSpec attemptSpec(const PhaseSpec& phase, bool stabilizing) {
 
 }  // namespace
 
-// Step size and counters of the phase being run.
-struct LoadStepper::StepControl {
-  double fraction = 1;  // step size in units of the phase's dt
-  int easySteps = 0;    // consecutive converged steps with few iterations
-  int cutbacks = 0;     // cut-backs of the step being attempted
-  int attempts = 0;     // Newton attempts of the step being attempted (cut-backs and retries)
+// Step size and counters of the phase being run. The StepSize part (the step size, the easy
+// steps towards regrowth and the stabilisation on failure) is what the next step, and a restart
+// from the last converged one, goes on with. With NewtonSpec::stabilizationOnFailure, a step
+// that failed without stabilisation sets `stabilizing`: its cut-backs and the steps after it are
+// solved with the factor from their first attempt, until stabilizedEasySteps of them in a row
+// (the cut-back regrowth's count) converged easily.
+struct LoadStepper::StepControl : StepSize {
+  int cutbacks = 0;  // cut-backs of the step being attempted
+  int attempts = 0;  // Newton attempts of the step being attempted (cut-backs and retries)
   int convergedInPhase = 0;
   bool singularAtStart = false;  // the last attempt was singular in its first iteration
-  // A step failed without stabilisation (NewtonSpec::stabilizationOnFailure): its cut-backs and
-  // the steps after it are solved with it from their first attempt, until stabilizedEasySteps
-  // of them in a row (the cut-back regrowth's count) converged easily.
-  bool stabilizing = false;
-  int stabilizedEasySteps = 0;
 };
 
 // The state carried from step to step and phase to phase.
@@ -180,12 +178,13 @@ bool LoadStepper::runPhase(const PhaseSpec& givenPhase, double phaseStart, Phase
     // stabilisation on failure; at a phase start the phase begins afresh, as it would have.
     resumeStepSize_ = false;
     if (position > 0) {
-      control.fraction = nextStepSize_.fraction;
-      control.easySteps = nextStepSize_.easySteps;
-      if (phase.newton.stabilizationOnFailure > 0) {
-        control.stabilizing = nextStepSize_.stabilizing;
-        control.stabilizedEasySteps = nextStepSize_.stabilizedEasySteps;
+      StepSize resumed = nextStepSize_;
+      // A deck changed for the restart may have dropped stabilize_on_failure from the phase.
+      if (!(phase.newton.stabilizationOnFailure > 0)) {
+        resumed.stabilizing = false;
+        resumed.stabilizedEasySteps = 0;
       }
+      static_cast<StepSize&>(control) = resumed;
       if (phase.newton.stabilizationShare > 0 && resumeViscousFactor_ > 0) {
         phase.newton.stabilization = chosenViscousFactor_ = resumeViscousFactor_;
       }
@@ -455,9 +454,7 @@ bool LoadStepper::acceptStep(const PhaseSpec& phase, const NewtonResult& result,
     }
   }
   // At a phase end the next phase starts with a full step, unstabilised.
-  nextStepSize_ = phaseEnd ? StepSize{}
-                           : StepSize{control.fraction, control.easySteps, control.stabilizing,
-                                      control.stabilizedEasySteps};
+  nextStepSize_ = phaseEnd ? StepSize{} : static_cast<const StepSize&>(control);
   observer_.convergedResidual(newton_->finalRelativeResidual());
   observer_.stepConverged(run.step, time, result.iterations, control.cutbacks, run.displacement,
                           newton_->internalForce(), write);
