@@ -42,12 +42,15 @@ void Progress::iteration(const IterationRecord& r) {
     finish();
     printOut(fmt::format(
         "  step {} attempt {} iteration {}  t = {:.6g}  |R|/|R0| = {:.3e}  energy {:.3e}  "
-        "contact: {} active, {} changed state, {} changed segment{}\n",
+        "contact: {} active, {} changed state, {} changed segment{}{}\n",
         r.step, r.attempt, r.iteration, r.time, r.relativeResidual, r.relativeEnergy,
         r.contact.active, r.contact.state, r.contact.segment,
         r.krylovTolerance > 0 ? fmt::format("  Krylov: {} iterations to {:.0e}", r.krylovIterations,
                                             r.krylovTolerance)
-                              : std::string()));
+                              : std::string(),
+        r.lineSearchFraction > 0
+            ? fmt::format("  line search: {:.3g} of the update", r.lineSearchFraction)
+            : std::string()));
     return;
   }
   if (quiet_ || !terminal_) return;

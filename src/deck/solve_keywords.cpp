@@ -76,8 +76,11 @@ std::vector<ValueDecl> newtonParameters() {
               .withRange(Range::greaterThan(1))
               .withDefault(defaultText(defaults.divergenceFactor)),
           boolValue("line_search",
-                    "backtracking line search along the Newton direction; when not given: yes "
-                    "in a deck with an enforcement=augmented contact pair, otherwise no"),
+                    "backtracking line search along the Newton direction from the first "
+                    "iteration; when not given: yes in a deck with an enforcement=augmented "
+                    "contact pair, otherwise no. Without it the line search still takes a failed "
+                    "attempt's retry and the rest of an attempt whose residual stops improving "
+                    "near convergence"),
           enumValue("predictor", choiceNames(newtonPredictors()),
                     "first iterate of a step: the converged state with the prescribed increment "
                     "(prescribed), or plus the last step's increment scaled to dt (extrapolate)")

@@ -148,6 +148,9 @@ struct IterationRecord {
   // (Newton's forcing term) and the Krylov iterations it took; 0 for a direct solve.
   double krylovTolerance = 0;
   int krylovIterations = 0;
+  // The fraction of this iteration's update the line search took (1: the whole update); 0 when
+  // the update did not go through the line search.
+  double lineSearchFraction = 0;
 };
 
 struct CutbackRecord {

@@ -54,6 +54,9 @@ struct SolveState {
   KrylovSolve krylov;  // this iteration's iterative solve (zero for a direct one)
   std::vector<std::uint64_t> activeSets;  // signature of the active set, per iteration
   std::vector<double> residualHistory;    // ||rhs|| per iteration
+  // A plain attempt whose remaining updates go through the line search: it stagnated near
+  // convergence (newton_stall.hpp, stagnatesNearConvergence).
+  bool damped = false;
   // With an extrapolating predictor: the predicted free increment and K_ff times it (the
   // first norms' floor, setFirstResidual).
   Eigen::VectorXd predictedFree, predictedForce;
@@ -377,7 +380,9 @@ std::optional<NewtonResult> Newton::evaluateIterate(newton_detail::SolveState& s
 
 // Ends a solve that will not converge as it goes: an active set or residual cycle, or a residual
 // that stopped improving (newton_stall.hpp). With the line search none of these apply: it is
-// the load stepper's remedy for them. Records this iterate's residual norm.
+// the load stepper's remedy for them. A residual that stops improving near convergence instead
+// switches the line search on for the rest of the attempt. Records this iterate's residual
+// norm.
 std::optional<NewtonResult> Newton::detectStall(newton_detail::SolveState& s, int iteration,
                                                 const newton_detail::Iterate& it) {
   const bool lineSearch = s.spec.lineSearch;
@@ -400,8 +405,12 @@ std::optional<NewtonResult> Newton::detectStall(newton_detail::SolveState& s, in
                               "(a cycle without state changes)",
                               iteration - 3, iteration));
   }
-  if (const int best = lineSearch ? 0 : stoppedImproving(s.residualHistory, s.norms.firstResidual);
-      best > 0) {
+  if (lineSearch || s.damped) return std::nullopt;
+  if (stagnatesNearConvergence(s.residualHistory, s.norms.firstResidual)) {
+    s.damped = true;  // the rest of this attempt through the line search
+    return std::nullopt;
+  }
+  if (const int best = stoppedImproving(s.residualHistory, s.norms.firstResidual); best > 0) {
     return failed(iteration - 1, FailureKind::Diverged,
                   fmt::format("the residual has stayed above its value of iteration {} for {} "
                               "iterations (no progress)",
@@ -569,7 +578,7 @@ NewtonResult Newton::solve(const NewtonStep& step, const NewtonSpec& spec,
     measureEnergy(s, iteration, du, it.rhs);
     if (iteration == 1) applyPrescribed(s.prescribedTarget, displacement);
     const double fraction =
-        spec.lineSearch
+        spec.lineSearch || s.damped
             ? lineSearch(step, du, it.rhs, displacement,
                          *std::max_element(s.residualHistory.begin(), s.residualHistory.end()))
             : 1.0;
@@ -578,7 +587,7 @@ NewtonResult Newton::solve(const NewtonStep& step, const NewtonSpec& spec,
     observer_.iteration({step.step, step.attempt, iteration, step.time, norms.residual,
                          norms.relativeResidual(), norms.unscaledEnergy(), norms.relativeEnergy(),
                          secondsSince(runStart_), it.changes, s.krylov.tolerance,
-                         s.krylov.iterations});
+                         s.krylov.iterations, spec.lineSearch || s.damped ? fraction : 0.0});
     if (atRoundoff || convergedAfterSolve(spec, norms, iteration)) {
       return finishConverged(s, displacement, iteration);
     }
