@@ -25,6 +25,9 @@
   iterations and forces. Its line search measures trials over facet edges against the attempt's
   largest residual (newton.hpp), a decision from crossing counts summed over the processes; in
   these steps it is taken 4 times (steps 23 and 24).
+--case damped: the ironing press at mu = 0.6 (input/stress/ironing/ironing_nts_mu06_wide.deck,
+  4 steps), whose step 4 is damped by the line search within its plain attempt: 2 processes
+  take the serial run's steps, iterations and forces, and neither run fails an attempt.
 --case repeat: decks/repeatable_amg.deck (20 k equations) three times on 2 processes with
   GMRES + BoomerAMG: the same Krylov and Newton iterations and residual history, bit for bit,
   and the same displacements (users compare iteration counts between runs).
@@ -392,21 +395,47 @@ def stabilize_case(args):
               f"{worst:.1e}); the stabilisation took {100 * share:.2g} % of the work")
 
 
-def facets_case(args):
+def ironing_variant(args, name, steps, newton=""):
+    """input/stress/ironing/NAME.deck in the scratch directory with its 100 steps cut to `steps`
+    and, if given, a `newton` line added to its solve block."""
     here = os.path.join(args.source, "input/stress/ironing")
-    text = open(os.path.join(here, "ironing_sts_mu03_wide.deck")).read()
-    check("\nsolve\n" in text and "steps 100 dt=0.01" in text and "contact sts" in text,
-          "the faceted ironing deck changed")
+    text = open(os.path.join(here, name + ".deck")).read()
+    check("\nsolve\n" in text and "steps 100 dt=0.01" in text, f"the deck {name} changed")
     text = re.sub(r'^(include|mesh)(\s+)"([^"/][^"]*)"',
                   lambda m: f'{m[1]}{m[2]}"{os.path.normpath(os.path.join(here, m[3]))}"', text,
                   flags=re.M)
-    text = text.replace("\nsolve\n", "\nsolve\n  newton predictor=extrapolate line_search=yes\n")
-    deck = os.path.join(args.scratch, "facets.deck")
-    open(deck, "w").write(text.replace("steps 100 dt=0.01", "steps 30 dt=0.01"))
+    if newton:
+        text = text.replace("\nsolve\n", f"\nsolve\n  newton {newton}\n")
+    deck = os.path.join(args.scratch, name + ".deck")
+    open(deck, "w").write(text.replace("steps 100 dt=0.01", f"steps {steps} dt=0.01"))
+    return deck
+
+
+def facets_case(args):
+    deck = ironing_variant(args, "ironing_sts_mu03_wide", 30,
+                           "predictor=extrapolate line_search=yes")
     serial, distributed, count, worst = serial_and_two(args, deck, pair="die")
     check(count == 30, f"{count} steps compared, expected 30")
     print(f"the faceted die with the line search on 2 processes: {count} steps as serial "
           f"(largest difference {worst:.1e})")
+
+
+def damped_case(args):
+    # Step 4 of this press stagnates near convergence and is damped by the line search within
+    # its plain attempt (newton_stall.hpp): the decision and every line-search fraction come
+    # from norms summed over the processes, so 2 processes take the serial run's iterations.
+    deck = ironing_variant(args, "ironing_nts_mu06_wide", 4)
+    serial, distributed, count, worst = serial_and_two(args, deck, pair="die")
+    check(count == 4, f"{count} steps compared, expected 4")
+    for path in (serial, distributed):
+        with h5py.File(path, "r") as h5:
+            summary = h5["summary"].attrs
+            check(summary["line_search_retries"] == 0 and summary["discarded_iterations"] == 0,
+                  f"{path}: an attempt failed (the press is no longer damped in its attempt)")
+            check(int(h5["steps"][step_names(h5)[-1]].attrs["iterations"]) > 9,
+                  f"{path}: step 4 converged before the stagnation test could fire")
+    print(f"the damped press on 2 processes: {count} steps as serial (largest difference "
+          f"{worst:.1e})")
 
 
 def repeat_case(args):
@@ -568,15 +597,15 @@ def main():
     parser.add_argument("--scratch", required=True)
     parser.add_argument("--case", required=True,
                         choices=["crossing", "restart", "errors", "segments", "augmented",
-                                 "predictor", "stabilize", "facets", "repeat", "inexact",
-                                 "setup"])
+                                 "predictor", "stabilize", "facets", "damped", "repeat",
+                                 "inexact", "setup"])
     args = parser.parse_args()
     shutil.rmtree(args.scratch, ignore_errors=True)
     os.makedirs(args.scratch)
     {"crossing": crossing_case, "restart": restart_case, "errors": errors_case,
      "segments": segments_case, "augmented": augmented_case,
      "predictor": predictor_case, "stabilize": stabilize_case, "facets": facets_case,
-     "repeat": repeat_case,
+     "damped": damped_case, "repeat": repeat_case,
      "inexact": inexact_case, "setup": setup_case}[args.case](args)
 
 
