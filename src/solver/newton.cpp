@@ -577,17 +577,17 @@ NewtonResult Newton::solve(const NewtonStep& step, const NewtonSpec& spec,
     }
     measureEnergy(s, iteration, du, it.rhs);
     if (iteration == 1) applyPrescribed(s.prescribedTarget, displacement);
+    const bool searched = spec.lineSearch || s.damped;
     const double fraction =
-        spec.lineSearch || s.damped
-            ? lineSearch(step, du, it.rhs, displacement,
-                         *std::max_element(s.residualHistory.begin(), s.residualHistory.end()))
-            : 1.0;
+        searched ? lineSearch(step, du, it.rhs, displacement,
+                              *std::max_element(s.residualHistory.begin(), s.residualHistory.end()))
+                 : 1.0;
     addToFree(displacement, du, fraction);
 
     observer_.iteration({step.step, step.attempt, iteration, step.time, norms.residual,
                          norms.relativeResidual(), norms.unscaledEnergy(), norms.relativeEnergy(),
                          secondsSince(runStart_), it.changes, s.krylov.tolerance,
-                         s.krylov.iterations, spec.lineSearch || s.damped ? fraction : 0.0});
+                         s.krylov.iterations, searched ? fraction : 0.0});
     if (atRoundoff || convergedAfterSolve(spec, norms, iteration)) {
       return finishConverged(s, displacement, iteration);
     }

@@ -32,9 +32,15 @@ int firstCycle(const std::vector<double>& norms) {
 // Example 6.1(a)'s one-step press (paper mesh, --newton-log), relative residuals of the plain
 // attempt: down to 3e-3 at iteration 2, then up through stick/slip changes. The period-2 test
 // stopped it at iteration 25; the drift is plain at iteration 6.
+const std::vector<double> kExample61Press{1.0,      2.977e-3, 3.755e-3, 9.558e-3,
+                                          9.235e-3, 2.706e-2, 2.869e-2, 3.275e-2,
+                                          3.879e-2, 3.683e-2, 3.784e-2};
+
+// A stagnation near convergence, shaped like the recorded ones below.
+const std::vector<double> kPlateau{1.0, 1e-2, 1e-5, 2e-5, 3e-5, 2e-5, 3e-5, 2e-5, 3e-5};
+
 TEST(NewtonStall, ThePressOfExample61StopsImprovingAtIterationSix) {
-  const std::vector<double> press{1.0,      2.977e-3, 3.755e-3, 9.558e-3, 9.235e-3, 2.706e-2,
-                                  2.869e-2, 3.275e-2, 3.879e-2, 3.683e-2, 3.784e-2};
+  const std::vector<double>& press = kExample61Press;
   EXPECT_EQ(firstNoProgress(press), 6);
   EXPECT_EQ(stoppedImproving(std::vector<double>(press.begin(), press.begin() + 6), 1.0), 2);
   EXPECT_EQ(firstCycle(press), 0);
@@ -55,9 +61,8 @@ TEST(NewtonStall, ConvergingHistoriesDoNotFire) {
 // retry from the step's start would throw away an iterate close to the solution (the attempt
 // is damped instead: the next test).
 TEST(NewtonStall, AStagnationNearConvergenceDoesNotFire) {
-  const std::vector<double> plateau{1.0, 1e-2, 1e-5, 2e-5, 3e-5, 2e-5, 3e-5, 2e-5, 3e-5};
-  EXPECT_EQ(firstNoProgress(plateau), 0);
-  EXPECT_EQ(firstCycle(plateau), 0);
+  EXPECT_EQ(firstNoProgress(kPlateau), 0);
+  EXPECT_EQ(firstCycle(kPlateau), 0);
 }
 
 // The same plateau is where the rest of the attempt goes through the line search
@@ -75,11 +80,8 @@ TEST(NewtonStall, APlateauNearConvergenceIsDampedFromTheFourthIterationAboveItsB
                                   2.795e-7, 2.637e-7, 2.673e-7, 2.781e-7, 2.585e-7};
   EXPECT_EQ(firstStagnation(press, 1.0), 9);
   EXPECT_EQ(firstNoProgress(press), 0);
-  const std::vector<double> plateau{1.0, 1e-2, 1e-5, 2e-5, 3e-5, 2e-5, 3e-5, 2e-5, 3e-5};
-  EXPECT_EQ(firstStagnation(plateau, 1.0), 7);
-  const std::vector<double> example61Press{1.0,      2.977e-3, 3.755e-3, 9.558e-3,
-                                           9.235e-3, 2.706e-2, 2.869e-2};
-  EXPECT_EQ(firstStagnation(example61Press, 1.0), 0);  // far from convergence: ended instead
+  EXPECT_EQ(firstStagnation(kPlateau, 1.0), 7);
+  EXPECT_EQ(firstStagnation(kExample61Press, 1.0), 0);  // far from convergence: ended instead
   const std::vector<double> threeUpThenDown{1.0, 1e-5, 2e-5, 4e-5, 3e-5, 8e-6, 1e-7, 1e-11};
   EXPECT_EQ(firstStagnation(threeUpThenDown, 1.0), 0);
 }
