@@ -84,8 +84,9 @@ void Progress::cutback(const CutbackRecord& r) {
 
 void Progress::note(const std::string& line) {
   finish();
-  // The solver choice is part of the run's report; a fallback is a warning, like a cut-back.
-  if (line.rfind("linear solver: ", 0) == 0) {
+  // The solver choice and the predictor's choices are part of the run's report; a fallback is
+  // a warning, like a cut-back.
+  if (line.rfind("linear solver: ", 0) == 0 || line.rfind("predictor: ", 0) == 0) {
     if (!quiet_) printOut(line + "\n");
   } else {
     printErr(line + "\n");

@@ -7,6 +7,7 @@
 #include <atomic>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -77,6 +78,12 @@ class ContactPair : public Contribution {
                                                           SurfaceMotion motion);
 
   std::string name() const override { return config_.name; }
+  // STAS: the rigid surface's translation at `time` (a drive of the model,
+  // NonlinearProblem::rigidSurfaceOffsets); empty for a pair without a moving rigid surface.
+  std::optional<Eigen::Vector3d> surfaceOffsetAt(double time) const {
+    if (!motion_) return std::nullopt;
+    return motion_(time);
+  }
   LocalStatus prepare(const AssemblyState& state) override;
   std::size_t itemCount() const override { return points_.size(); }
   std::span<const int> itemNodes(std::size_t item) const override { return points_[item].nodes; }

@@ -83,7 +83,8 @@ std::vector<ValueDecl> newtonParameters() {
                     "near convergence"),
           enumValue("predictor", choiceNames(newtonPredictors()),
                     "first iterate of a step: the converged state with the prescribed increment "
-                    "(prescribed), or plus the last step's increment scaled to dt (extrapolate)")
+                    "(prescribed), or plus the last step's increment scaled to dt (extrapolate; "
+                    "not at a step where a rigid surface's motion turns)")
               .withDefault(predictorName(defaults.predictor)),
           boolValue("penalty_continuation",
                     "a step that fails with and without line search at a contact penalty more "

@@ -30,6 +30,17 @@ void Model::externalForces(double t, Eigen::VectorXd& force) const {
   boundaryConditions_.externalForces(t, mesh_.coordinates, force);
 }
 
+void Model::rigidSurfaceOffsets(double t, Eigen::VectorXd& offsets) const {
+  std::vector<Eigen::Vector3d> moving;
+  for (const auto& pair : contactPairs_) {
+    if (auto offset = pair->surfaceOffsetAt(t)) moving.push_back(*offset);
+  }
+  offsets.resize(3 * static_cast<Eigen::Index>(moving.size()));
+  for (std::size_t i = 0; i < moving.size(); ++i) {
+    offsets.segment<3>(3 * static_cast<Eigen::Index>(i)) = moving[i];
+  }
+}
+
 void Model::assemble(const AssemblyState& state, Eigen::VectorXd& internalForce,
                      SystemMatrices* tangent) {
   viscousFactor_ = state.viscousFactor;

@@ -32,6 +32,7 @@ class Model : public NonlinearProblem {
   const Eigen::Matrix3Xd& referenceCoordinates() const override { return mesh_.coordinates; }
   void prescribedValues(double t, Eigen::VectorXd& values) const override;
   void externalForces(double t, Eigen::VectorXd& force) const override;
+  void rigidSurfaceOffsets(double t, Eigen::VectorXd& offsets) const override;
   void assemble(const AssemblyState& state, Eigen::VectorXd& internalForce,
                 SystemMatrices* tangent) override;
   Augmentation augment() override;

@@ -90,6 +90,7 @@ class LoadStepper {
   // NewtonSpec::Predictor::Extrapolate: the increment of the step to targetTime (null: none).
   const Eigen::VectorXd* predictedIncrement(const PhaseSpec& phase, double targetTime,
                                             PhaseRun& run) const;
+  bool rigidSurfaceTurns(double before, double now, double next) const;
   // Prepares the retry of a failed attempt on the same step (load_stepper.cpp).
   NewtonStep retryStep(const NewtonStep& failed, const NewtonResult& result, double dt,
                        const std::string& how, StepControl& control, PhaseRun& run);

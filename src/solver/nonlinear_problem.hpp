@@ -27,6 +27,12 @@ class NonlinearProblem {
   virtual void prescribedValues(double t, Eigen::VectorXd& values) const = 0;
   // External nodal forces (3 * numNodes) at time t.
   virtual void externalForces(double t, Eigen::VectorXd& force) const = 0;
+  // The translations of the rigid surfaces that move (3 per surface, in a fixed order) at time
+  // t, which an extrapolating predictor compares from step to step (solver/drive_change.hpp).
+  // Empty: none moves.
+  virtual void rigidSurfaceOffsets(double /*t*/, Eigen::VectorXd& offsets) const {
+    offsets.resize(0);
+  }
   // Internal nodal forces (elements + contact, 3 * numNodes) and optionally the tangent.
   // Throws StepFailure when an element or contact point fails.
   virtual void assemble(const AssemblyState& state, Eigen::VectorXd& internalForce,

@@ -8,6 +8,7 @@
 #include <limits>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "fem/assembler.hpp"
 #include "solver/nonlinear_problem.hpp"
@@ -151,6 +152,7 @@ class RecordingObserver : public StepObserver {
   std::vector<IterationRecord> iterations;
   std::vector<CutbackRecord> cutbacks;
   std::vector<ConvergedStep> steps;
+  std::vector<std::string> notes;
   std::size_t stopAfterIterations = std::numeric_limits<std::size_t>::max();
 
   void iteration(const IterationRecord& record) override { iterations.push_back(record); }
@@ -161,6 +163,7 @@ class RecordingObserver : public StepObserver {
     steps.push_back(
         {step, time, iterationCount, cutbackCount, writeOutput, displacement, internalForce});
   }
+  void note(const std::string& line) override { notes.push_back(line); }
   bool stopRequested() const override { return iterations.size() >= stopAfterIterations; }
 };
 

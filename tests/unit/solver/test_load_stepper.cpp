@@ -252,6 +252,41 @@ TEST(LoadStepper, ExtrapolationIsExactForALinearChainUnderLinearMotion) {
   }
 }
 
+// A chain beside a rigid surface that moves by `offset(t)`: the stepper reads the surface's
+// motion as a drive, the springs do not feel it.
+struct ChainBesideRigidSurface : SpringChain {
+  using SpringChain::SpringChain;
+  std::function<Eigen::Vector3d(double)> offset;
+  void rigidSurfaceOffsets(double t, Eigen::VectorXd& offsets) const override {
+    offsets = offset(t);
+  }
+};
+
+TEST(LoadStepper, ExtrapolationStartsFromTheConvergedStateWhereARigidSurfaceTurns) {
+  // The linear chain of the test above, beside a surface pressed down until t = 2 and dragged
+  // sideways after it (the ironing decks' path): the step into the drag, t in (2, 3], starts
+  // from the converged state (2 iterations), the log says so, and every other step after the
+  // first is extrapolated exactly (1 iteration). The states are the closed-form ones.
+  ChainBesideRigidSurface chain(3, SpringLaw::linear(1.0), [](double t) { return 0.1 * t; });
+  chain.offset = [](double t) {
+    return Eigen::Vector3d(std::max(t - 2, 0.0), 0, -std::min(t, 2.0));
+  };
+  RecordingObserver observer;
+  LoadStepper stepper(chain, observer, {extrapolating(phase(5, 1.0))});
+  ASSERT_EQ(stepper.run().outcome, RunSummary::Outcome::Completed);
+  EXPECT_EQ(iterationCounts(observer), (std::vector<int>{2, 1, 2, 1, 1}));
+  std::vector<std::string> turns;
+  for (const std::string& note : observer.notes) {
+    if (note.find("rigid surface") != std::string::npos) turns.push_back(note);
+  }
+  EXPECT_EQ(turns, std::vector<std::string>{"predictor: step 3 starts from the converged state, "
+                                            "not extrapolated: a rigid surface's motion turns at "
+                                            "t = 2"});
+  for (const auto& step : observer.steps) {
+    EXPECT_NEAR(step.displacement[9], 0.1 * step.time, 1e-15);
+  }
+}
+
 TEST(LoadStepper, ExtrapolationConvergesToTheSameStatesInFewerIterations) {
   // Hardening springs pulled by a tip force 0.5 t, with a cut-back in the middle (dt ratios
   // 1/2 and 2 scale the prediction): the same converged states as without the predictor, to
