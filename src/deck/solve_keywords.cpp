@@ -80,7 +80,7 @@ std::vector<ValueDecl> newtonParameters() {
                     "iteration; when not given: yes in a deck with an enforcement=augmented "
                     "contact pair, otherwise no. Without it the line search still takes a failed "
                     "attempt's retry and the rest of an attempt whose residual stops improving "
-                    "near convergence"),
+                    "or whose contact active set cycles near convergence"),
           enumValue("predictor", choiceNames(newtonPredictors()),
                     "first iterate of a step: the converged state with the prescribed increment "
                     "(prescribed), or plus the last step's increment scaled to dt (extrapolate; "

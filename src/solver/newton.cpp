@@ -386,18 +386,22 @@ std::optional<NewtonResult> Newton::evaluateIterate(newton_detail::SolveState& s
 std::optional<NewtonResult> Newton::detectStall(newton_detail::SolveState& s, int iteration,
                                                 const newton_detail::Iterate& it) {
   const bool lineSearch = s.spec.lineSearch;
+  s.norms.residual = safeNorm(it.rhs);
   // An extrapolated first iterate's active set is a prediction (points held closed by their
   // gap history, ContactPair::holdsClosedAtPrediction), not a state Newton passed through: the
   // next iterates returning to it is no cycle.
   if (!lineSearch && !it.predicted && enteredCycle(s.activeSets, it.changes)) {
-    // The load stepper retries the step with the line search at once (load_stepper.cpp),
-    // instead of after maxIterations iterations of the cycle.
-    return failed(iteration - 1, FailureKind::Diverged,
-                  fmt::format("the contact active set returned at iteration {} to an earlier "
-                              "iteration's (a cycle)",
-                              iteration));
+    if (cycleNearConvergence(s.norms.residual, s.norms.firstResidual)) {
+      s.damped = true;  // the rest of this attempt through the line search (newton_stall.hpp)
+    } else {
+      // The load stepper retries the step with the line search at once (load_stepper.cpp),
+      // instead of after maxIterations iterations of the cycle.
+      return failed(iteration - 1, FailureKind::Diverged,
+                    fmt::format("the contact active set returned at iteration {} to an earlier "
+                                "iteration's (a cycle)",
+                                iteration));
+    }
   }
-  s.norms.residual = safeNorm(it.rhs);
   s.residualHistory.push_back(s.norms.residual);
   if (!lineSearch && residualCycles(s.residualHistory)) {
     return failed(iteration - 1, FailureKind::Diverged,

@@ -101,6 +101,45 @@ TEST(StepControl, AnAttemptThatStagnatesNearConvergenceIsDampedWithoutARestart) 
             << reference.transpose() << " with the line search throughout\n";
 }
 
+TEST(StepControl, AnActiveSetCycleNearConvergenceIsDampedWithoutARestart) {
+  // The smoothed ironing die's first drag step (t = 0.21) with the extrapolating predictor:
+  // its first update leaves 2e-6 of the step's residual, and the stick/slip states of 16-30
+  // points then return at iteration 5 to an earlier iteration's. Such a cycle used to end the
+  // attempt and the step was retried with the line search from its start (4 + 7 iterations);
+  // near convergence it is now damped where it stands (9 iterations in all).
+  const std::string name = "ironing/ironing_sts_mu03_wide_smooth";
+  const std::string deck = readText(stressDeck(name));
+  const DeckRun drag = runStressText(
+      replaceOnce(deck, "  steps 100 ", "  newton predictor=extrapolate\n  steps 21 "), name);
+  const DeckRun searched =
+      runStressText(replaceOnce(deck, "  steps 100 ",
+                                "  newton predictor=extrapolate line_search=yes\n  steps 21 "),
+                    name);
+  for (const DeckRun* run : {&drag, &searched}) {
+    ASSERT_EQ(run->summary.outcome, RunSummary::Outcome::Completed) << run->summary.message;
+    ASSERT_EQ(run->steps.size(), 21u);
+  }
+  EXPECT_EQ(drag.summary.lineSearchRetries, 0);
+  EXPECT_EQ(drag.summary.discardedIterations, 0);
+  EXPECT_EQ(drag.summary.totalCutbacks, 0);
+  const std::vector<IterationRecord> step21 = drag.iterationsOf(21);
+  const auto firstDamped =
+      std::find_if(step21.begin(), step21.end(),
+                   [](const IterationRecord& row) { return row.lineSearchFraction > 0; });
+  ASSERT_NE(firstDamped, step21.end()) << "step 21 was not damped";
+  EXPECT_LT(firstDamped->relativeResidual, 1e-3);
+  for (auto row = step21.begin(); row != firstDamped; ++row) EXPECT_GT(row->contact.state, 0);
+  // Two Newton paths to each step's equilibrium (bound as in the test above).
+  for (std::size_t k = 0; k < drag.steps.size(); ++k) {
+    const Eigen::Vector3d force = drag.steps[k].pair("die").totalForce;
+    const Eigen::Vector3d reference = searched.steps[k].pair("die").totalForce;
+    EXPECT_GT(reference.norm(), 0.1);
+    EXPECT_LT((force - reference).norm(), 1e-8 * reference.norm()) << "step " << k + 1;
+  }
+  std::cout << "first drag step: " << step21.size() << " iterations, damped from iteration "
+            << firstDamped->iteration << "\n";
+}
+
 TEST(InvertedElement, AnInversionNoStepAvoidsStopsTheRunNamingTheElement) {
   const std::string directory = scratchDirectory("inverted_persistent");
   const CommandResult result = runCovcontact(
