@@ -3,9 +3,10 @@
 // only that drive). A constant-velocity prediction carries on the last step's motion; where the
 // drive turns (a press followed by a drag), it carries the old motion into the new one. On the
 // ironing die as a rigid cylinder (STAS, mu = 0.3) the slab extrapolated downwards under a die
-// that moves sideways put all 256 points in slip at the first drag step's first iterate and took
-// 17 Newton iterations, against 6 from the converged state (docs/verification/sliding.md,
-// forty-fourth session). Kept apart from the stepper so that unit tests can feed it drives.
+// that moves sideways changed the state of 200 of the 256 contact points at the first drag
+// step's first iterate, and the step took 17 Newton iterations, against 6 from the converged
+// state (docs/verification/sliding.md, forty-fourth session). Kept apart from the stepper so
+// that unit tests can feed it drives.
 #pragma once
 
 #include <Eigen/Core>

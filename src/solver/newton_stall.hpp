@@ -90,11 +90,12 @@ inline bool stagnatesNearConvergence(const std::vector<double>& norms, double re
 // stands as well; above it the attempt ends and the step is retried with the line search from
 // its start. Near convergence the retry retraced the attempt: the full updates before the cycle
 // pass the line search's test whole, so it paid the attempt's iterations twice (the 6.3 spiral:
-// eight retries of steps whose plain attempts cycled at iteration 3 at 2-3e-4, 16 iterations;
-// the smoothed ironing die's first drag step: a cycle at 2e-6 after 4 iterations, then 7 in the
-// retry, now 9 in all). Far from it the retry's line search takes another path from the start:
-// damping where the cycle began cost example 6.1(a) 13 more iterations (a cycle at 1e-2) and
-// `large_slip_step` 9 (at 0.12) (forty-fourth session, docs/verification/sliding.md).
+// eight retries of steps whose plain attempts cycled at iteration 3 at 1.5-3.3e-4, 16
+// iterations; the smoothed ironing die's first drag step: a cycle at 2e-6 after 4 iterations,
+// then 7 in the retry, now 9 in all). Far from it the retry's line search takes another path
+// from the start: damping where the cycle began cost example 6.1(a) 9 more iterations in all (a
+// cycle at 1e-2) and `large_slip_step` 9 (at 0.12) (forty-fourth session,
+// docs/verification/sliding.md).
 inline bool cycleNearConvergence(double residual, double reference) {
   return residual <= kCycleCheckAbove * reference;
 }
