@@ -351,7 +351,8 @@ newton_detail::SolveState Newton::beginSolve(const NewtonStep& step, const Newto
   extrapolatedStart_ = step.predictedIncrement != nullptr;
   s.prescribedIncrement = s.prescribedTarget - gather(displacement, dofs.prescribedDofs());
   linear_.beginStep();
-  orientation_.begin(spec.maxIterations, !problem_.nodeOwners().empty());
+  orientation_.begin(spec.maxIterations, !problem_.nodeOwners().empty(),
+                     {step.previousTime, step.time, spec.stabilization, spec.lineSearch});
   foldCandidate_ = false;
   return s;
 }

@@ -25,7 +25,11 @@ void TangentOrientationWatch::observe(int iteration, const SparseMatrix& tangent
 std::string TangentOrientationWatch::describe() const {
   std::vector<int> signs;
   std::vector<int> iterations;
-  for (const Kept& kept : kept_) {
+  std::vector<const Kept*> all;
+  for (const Kept& kept : earlier_) all.push_back(&kept);
+  for (const Kept& kept : kept_) all.push_back(&kept);
+  for (const Kept* keptPointer : all) {
+    const Kept& kept = *keptPointer;
     std::optional<int> sign;
     try {
       const auto solver = makeUmfpackSolver();
@@ -47,11 +51,14 @@ std::string TangentOrientationWatch::describe() const {
   if (!positive || !negative) return {};
   std::string list;
   for (std::size_t k = 0; k < signs.size(); ++k) {
-    list += fmt::format("{}{} {}", k ? ", " : "", iterations[k],
+    // The plain attempt's iterations first, then the retry's after a semicolon.
+    const char* separator = k == 0 ? "" : k == earlier_.size() ? "; " : ", ";
+    list += fmt::format("{}{} {}", separator, iterations[k],
                         signs[k] > 0   ? "+"
                         : signs[k] < 0 ? "-"
                                        : "0");
   }
+  if (!earlier_.empty()) list = "the plain attempt, then its line-search retry: " + list;
   return fmt::format(
       "the tangent's determinant changes sign between these iterations ({}): with the contact "
       "states Newton passes through, equilibrium has no locally unique solution here, most "

@@ -26,17 +26,37 @@ inline constexpr Eigen::Index kOrientationEquations = 20000;
 
 class TangentOrientationWatch {
  public:
+  // What tells a line-search retry of a failed plain attempt: the same step (start and end
+  // time) and stabilisation factor, without and then with the line search.
+  struct Attempt {
+    double startTime = -1;
+    double endTime = -1;
+    double stabilization = 0;
+    bool lineSearch = false;
+  };
   // Keeps the tangents of the last kOrientationWindow iterations of an attempt of at most
-  // maxIterations; only up to kOrientationEquations equations, on one process.
-  void begin(int maxIterations, bool distributed) {
+  // maxIterations; only up to kOrientationEquations equations, on one process. The line-search
+  // retry of a failed plain attempt keeps those of the plain attempt as well: both start from
+  // the same converged state, and which of the two passes through tangents of both signs
+  // depends on round-off in the path (ironing_nts_mu06_equal: the retry's up to the
+  // forty-fourth session; since an active-set cycle near convergence no longer ends the plain
+  // attempt, the plain attempt's).
+  void begin(int maxIterations, bool distributed, const Attempt& attempt) {
+    const bool retry = attempt.startTime == attempt_.startTime &&
+                       attempt.endTime == attempt_.endTime &&
+                       attempt.stabilization == attempt_.stabilization && !attempt_.lineSearch &&
+                       attempt.lineSearch;
+    earlier_.clear();
+    if (retry) earlier_.swap(kept_);
     kept_.clear();
     from_ = maxIterations - kOrientationWindow + 1;
     distributed_ = distributed;
+    attempt_ = attempt;
   }
   // The tangent assembled at `iteration` (kept only within the window: no cost before it).
   void observe(int iteration, const SparseMatrix& tangent);
-  // Factorizes the kept tangents (UMFPACK) and, if their determinants have both signs, returns
-  // the sentence for the failure message; else an empty string.
+  // Factorizes the kept tangents of both attempts (UMFPACK) and, if their determinants have
+  // both signs, returns the sentence for the failure message; else an empty string.
   std::string describe() const;
 
  private:
@@ -45,6 +65,8 @@ class TangentOrientationWatch {
     SparseMatrix tangent;
   };
   std::deque<Kept> kept_;
+  std::deque<Kept> earlier_;  // the window of the plain attempt a line-search retry follows
+  Attempt attempt_;
   int from_ = 0;
   bool distributed_ = false;
 };

@@ -12,6 +12,7 @@
 #include "common/errors.hpp"
 #include "solver/factor_reuse.hpp"
 #include "solver/linear_solver.hpp"
+#include "solver/tangent_orientation.hpp"
 #include "solver/tangent_solver.hpp"
 
 namespace cc {
@@ -132,6 +133,45 @@ TEST(LinearSolver, UmfpackTellsTheSignOfTheDeterminant) {
       const double dense = Eigen::MatrixXd(matrix).partialPivLu().determinant();
       EXPECT_EQ(solver->determinantSign(), dense > 0 ? 1 : -1) << shift;
     }
+  }
+}
+
+// The fold verdict of a failing step (tangent_orientation.hpp) from the last five tangents of
+// its final attempt and, when that attempt is the line-search retry of a failed plain attempt
+// at the same step, of the plain attempt's too: the grid Laplacian shifted by 0.5 has one
+// eigenvalue below the shift (determinant sign -1, the test above), unshifted none (+1).
+TEST(TangentOrientation, ALineSearchRetryIsJudgedWithThePlainAttemptBeforeIt) {
+  const SparseMatrix positive = gridLaplacian(8, 0.0), negative = gridLaplacian(8, 0.5);
+  const TangentOrientationWatch::Attempt plain{0.5, 0.6, 0.0, false};
+  auto observeWindow = [&](TangentOrientationWatch& watch, const SparseMatrix& first) {
+    watch.observe(25, negative);  // before the window: not kept
+    watch.observe(26, first);
+    for (int iteration = 27; iteration <= 30; ++iteration) watch.observe(iteration, positive);
+  };
+  TangentOrientationWatch watch;
+  watch.begin(30, false, plain);
+  observeWindow(watch, negative);
+  EXPECT_NE(watch.describe().find("(26 -, 27 +, 28 +, 29 +, 30 +)"), std::string::npos)
+      << watch.describe();
+  // The retry alone has one sign; with the plain attempt's window, both.
+  TangentOrientationWatch::Attempt retry = plain;
+  retry.lineSearch = true;
+  watch.begin(30, false, retry);
+  observeWindow(watch, positive);
+  EXPECT_NE(watch.describe().find("(the plain attempt, then its line-search retry: 26 -, 27 +, "
+                                  "28 +, 29 +, 30 +; 26 +, 27 +, 28 +, 29 +, 30 +)"),
+            std::string::npos)
+      << watch.describe();
+  // Not after a cut-back (another end time), nor for a stabilised attempt, nor for a plain
+  // attempt after a plain one.
+  for (TangentOrientationWatch::Attempt other :
+       {TangentOrientationWatch::Attempt{0.5, 0.55, 0.0, true},
+        TangentOrientationWatch::Attempt{0.5, 0.6, 1e-3, true}, plain}) {
+    watch.begin(30, false, plain);
+    observeWindow(watch, negative);
+    watch.begin(30, false, other);
+    observeWindow(watch, positive);
+    EXPECT_EQ(watch.describe(), "") << other.endTime << " " << other.stabilization;
   }
 }
 
