@@ -53,6 +53,29 @@ TEST(InvertedElement,
   EXPECT_LT((force - reference).norm(), 1e-7 * reference.norm());
 }
 
+// A run whose attempts are damped where they stand, against the same steps with the line search
+// from every first iteration: both complete `steps` steps, the damped run without a retry, a
+// failed attempt or a cut-back, and every step's die force is the searched run's to 1e-8. Two
+// Newton paths to each step's equilibrium; friction makes the end state depend on the path
+// within the tolerance (measured: at most 2.4e-13 of the force; bound: 1e-8, the relative
+// residual at which the energy criterion of 1e-16 is met here).
+void expectDampedRunMatchesSearched(const DeckRun& damped, const DeckRun& searched,
+                                    std::size_t steps) {
+  for (const DeckRun* run : {&damped, &searched}) {
+    ASSERT_EQ(run->summary.outcome, RunSummary::Outcome::Completed) << run->summary.message;
+    ASSERT_EQ(run->steps.size(), steps);
+  }
+  EXPECT_EQ(damped.summary.lineSearchRetries, 0);
+  EXPECT_EQ(damped.summary.discardedIterations, 0);
+  EXPECT_EQ(damped.summary.totalCutbacks, 0);
+  for (std::size_t k = 0; k < steps; ++k) {
+    const Eigen::Vector3d force = damped.steps[k].pair("die").totalForce;
+    const Eigen::Vector3d reference = searched.steps[k].pair("die").totalForce;
+    EXPECT_GT(reference.norm(), 0.1);
+    EXPECT_LT((force - reference).norm(), 1e-8 * reference.norm()) << "step " << k + 1;
+  }
+}
+
 // A plain attempt whose residual stops improving near convergence takes the rest of its updates
 // through the line search (newton_stall.hpp, stagnatesNearConvergence) instead of running to
 // the iteration limit and being retried from the step's start. The ironing press at mu = 0.6
@@ -68,13 +91,8 @@ TEST(StepControl, AnAttemptThatStagnatesNearConvergenceIsDampedWithoutARestart) 
   const DeckRun press = runStressText(replaceOnce(deck, "steps 100 ", "steps 4 "), name);
   const DeckRun searched = runStressText(
       replaceOnce(deck, "  steps 100 ", "  newton line_search=yes\n  steps 4 "), name);
-  for (const DeckRun* run : {&press, &searched}) {
-    ASSERT_EQ(run->summary.outcome, RunSummary::Outcome::Completed) << run->summary.message;
-    ASSERT_EQ(run->steps.size(), 4u);
-  }
-  EXPECT_EQ(press.summary.lineSearchRetries, 0);
-  EXPECT_EQ(press.summary.discardedIterations, 0);
-  EXPECT_EQ(press.summary.totalCutbacks, 0);
+  expectDampedRunMatchesSearched(press, searched, 4);
+  ASSERT_EQ(press.steps.size(), 4u);
   // Plain updates first, then only line-search ones once the stagnation showed.
   const std::vector<IterationRecord> step4 = press.iterationsOf(4);
   ASSERT_FALSE(step4.empty());
@@ -85,15 +103,6 @@ TEST(StepControl, AnAttemptThatStagnatesNearConvergenceIsDampedWithoutARestart) 
   EXPECT_GE(firstDamped->iteration, 6);  // the stagnation test needs four iterations above a best
   EXPECT_LT(firstDamped->relativeResidual, 1e-3);
   for (auto row = firstDamped; row != step4.end(); ++row) EXPECT_GT(row->lineSearchFraction, 0);
-  // Two Newton paths to each step's equilibrium; friction makes the end state depend on the
-  // path within the tolerance (measured: at most 2.4e-13 of the force; bound: 1e-8, the
-  // relative residual at which the energy criterion of 1e-16 is met here).
-  for (std::size_t k = 0; k < 4; ++k) {
-    const Eigen::Vector3d force = press.steps[k].pair("die").totalForce;
-    const Eigen::Vector3d reference = searched.steps[k].pair("die").totalForce;
-    EXPECT_GT(reference.norm(), 0.1);
-    EXPECT_LT((force - reference).norm(), 1e-8 * reference.norm()) << "step " << k + 1;
-  }
   const Eigen::Vector3d force = press.steps.back().pair("die").totalForce;
   const Eigen::Vector3d reference = searched.steps.back().pair("die").totalForce;
   std::cout << "press step 4: " << step4.size() << " iterations, damped from iteration "
@@ -115,13 +124,8 @@ TEST(StepControl, AnActiveSetCycleNearConvergenceIsDampedWithoutARestart) {
       runStressText(replaceOnce(deck, "  steps 100 ",
                                 "  newton predictor=extrapolate line_search=yes\n  steps 21 "),
                     name);
-  for (const DeckRun* run : {&drag, &searched}) {
-    ASSERT_EQ(run->summary.outcome, RunSummary::Outcome::Completed) << run->summary.message;
-    ASSERT_EQ(run->steps.size(), 21u);
-  }
-  EXPECT_EQ(drag.summary.lineSearchRetries, 0);
-  EXPECT_EQ(drag.summary.discardedIterations, 0);
-  EXPECT_EQ(drag.summary.totalCutbacks, 0);
+  expectDampedRunMatchesSearched(drag, searched, 21);
+  ASSERT_EQ(drag.steps.size(), 21u);
   const std::vector<IterationRecord> step21 = drag.iterationsOf(21);
   const auto firstDamped =
       std::find_if(step21.begin(), step21.end(),
@@ -129,13 +133,6 @@ TEST(StepControl, AnActiveSetCycleNearConvergenceIsDampedWithoutARestart) {
   ASSERT_NE(firstDamped, step21.end()) << "step 21 was not damped";
   EXPECT_LT(firstDamped->relativeResidual, 1e-3);
   for (auto row = step21.begin(); row != firstDamped; ++row) EXPECT_GT(row->contact.state, 0);
-  // Two Newton paths to each step's equilibrium (bound as in the test above).
-  for (std::size_t k = 0; k < drag.steps.size(); ++k) {
-    const Eigen::Vector3d force = drag.steps[k].pair("die").totalForce;
-    const Eigen::Vector3d reference = searched.steps[k].pair("die").totalForce;
-    EXPECT_GT(reference.norm(), 0.1);
-    EXPECT_LT((force - reference).norm(), 1e-8 * reference.norm()) << "step " << k + 1;
-  }
   std::cout << "first drag step: " << step21.size() << " iterations, damped from iteration "
             << firstDamped->iteration << "\n";
 }
