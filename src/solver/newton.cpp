@@ -392,7 +392,7 @@ std::optional<NewtonResult> Newton::detectStall(newton_detail::SolveState& s, in
   // gap history, ContactPair::holdsClosedAtPrediction), not a state Newton passed through: the
   // next iterates returning to it is no cycle.
   if (!lineSearch && !it.predicted && enteredCycle(s.activeSets, it.changes)) {
-    if (cycleNearConvergence(s.norms.residual, s.norms.firstResidual)) {
+    if (nearConvergence(s.norms.residual, s.norms.firstResidual)) {
       s.damped = true;  // the rest of this attempt through the line search (newton_stall.hpp)
     } else {
       // The load stepper retries the step with the line search at once (load_stepper.cpp),

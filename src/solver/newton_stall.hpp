@@ -23,9 +23,13 @@ namespace cc {
 // retry would not help).
 inline constexpr double kCycleNormMatch = 1e-3;
 inline constexpr double kCycleCheckAbove = 1e-3;
+// The level below which every test here counts a residual as near convergence.
+inline bool nearConvergence(double residual, double reference) {
+  return residual <= kCycleCheckAbove * reference;
+}
 inline bool residualCycles(const std::vector<double>& norms) {
   const std::size_t k = norms.size();
-  if (k < 5 || norms[k - 1] <= kCycleCheckAbove * norms[0]) return false;
+  if (k < 5 || nearConvergence(norms[k - 1], norms[0])) return false;
   auto repeats = [&](std::size_t i) {
     return std::abs(norms[i] - norms[i - 2]) <= kCycleNormMatch * norms[i];
   };
@@ -58,7 +62,7 @@ inline int bestBeforeNoProgress(const std::vector<double>& norms) {
 // The drift far from convergence: bestBeforeNoProgress while the last residual is above
 // kCycleCheckAbove of `reference`, the step's reference residual (Newton's firstResidual).
 inline int stoppedImproving(const std::vector<double>& norms, double reference) {
-  if (norms.empty() || norms.back() <= kCycleCheckAbove * reference) return 0;
+  if (norms.empty() || nearConvergence(norms.back(), reference)) return 0;
   return bestBeforeNoProgress(norms);
 }
 
@@ -81,23 +85,20 @@ inline int stoppedImproving(const std::vector<double>& norms, double reference) 
 // session, docs/verification/sliding.md): the failed attempts of the refined press fall from
 // 87 to 11 iterations, the paper decks keep every count.
 inline bool stagnatesNearConvergence(const std::vector<double>& norms, double reference) {
-  return !norms.empty() && norms.back() <= kCycleCheckAbove * reference &&
+  return !norms.empty() && nearConvergence(norms.back(), reference) &&
          bestBeforeNoProgress(norms) > 0;
 }
 
 // An active-set cycle (newton.cpp: the contact points' states and segments return to an earlier
-// iterate's) at a residual at or below kCycleCheckAbove of `reference` is damped where it
-// stands as well; above it the attempt ends and the step is retried with the line search from
-// its start. Near convergence the retry retraced the attempt: the full updates before the cycle
-// pass the line search's test whole, so it paid the attempt's iterations twice (the 6.3 spiral:
-// eight retries of steps whose plain attempts cycled at iteration 3 at 1.5-3.3e-4, 16
+// iterate's) at a residual near convergence (nearConvergence above) is damped where it stands
+// as well (Newton::detectStall); above it the attempt ends and the step is retried with the line
+// search from its start. Near convergence the retry retraced the attempt: the full updates before
+// the cycle pass the line search's test whole, so it paid the attempt's iterations twice (the 6.3
+// spiral: eight retries of steps whose plain attempts cycled at iteration 3 at 1.5-3.3e-4, 16
 // iterations; the smoothed ironing die's first drag step: a cycle at 2e-6 after 4 iterations,
 // then 7 in the retry, now 9 in all). Far from it the retry's line search takes another path
 // from the start: damping where the cycle began cost example 6.1(a) 9 more iterations in all (a
 // cycle at 1e-2) and `large_slip_step` 9 (at 0.12) (forty-fourth session,
 // docs/verification/sliding.md).
-inline bool cycleNearConvergence(double residual, double reference) {
-  return residual <= kCycleCheckAbove * reference;
-}
 
 }  // namespace cc

@@ -25,26 +25,24 @@ void TangentOrientationWatch::observe(int iteration, const SparseMatrix& tangent
 std::string TangentOrientationWatch::describe() const {
   std::vector<int> signs;
   std::vector<int> iterations;
-  std::vector<const Kept*> all;
-  for (const Kept& kept : earlier_) all.push_back(&kept);
-  for (const Kept& kept : kept_) all.push_back(&kept);
-  for (const Kept* keptPointer : all) {
-    const Kept& kept = *keptPointer;
-    std::optional<int> sign;
-    try {
-      const auto solver = makeUmfpackSolver();
-      solver->analyzePattern(kept.tangent);
-      solver->factorize(kept.tangent);
-      sign = solver->determinantSign();
-    } catch (const StepFailure& failure) {
-      if (failure.kind() != FailureKind::SingularSystem) return {};
-      sign = 0;  // singular: on the fold itself
-    } catch (const std::exception&) {
-      return {};  // no factor (out of memory, OutOfMemory or bad_alloc): nothing to say
+  for (const std::deque<Kept>* window : {&earlier_, &kept_}) {
+    for (const Kept& kept : *window) {
+      std::optional<int> sign;
+      try {
+        const auto solver = makeUmfpackSolver();
+        solver->analyzePattern(kept.tangent);
+        solver->factorize(kept.tangent);
+        sign = solver->determinantSign();
+      } catch (const StepFailure& failure) {
+        if (failure.kind() != FailureKind::SingularSystem) return {};
+        sign = 0;  // singular: on the fold itself
+      } catch (const std::exception&) {
+        return {};  // no factor (out of memory, OutOfMemory or bad_alloc): nothing to say
+      }
+      if (!sign) return {};
+      signs.push_back(*sign);
+      iterations.push_back(kept.iteration);
     }
-    if (!sign) return {};
-    signs.push_back(*sign);
-    iterations.push_back(kept.iteration);
   }
   const bool positive = std::find(signs.begin(), signs.end(), 1) != signs.end();
   const bool negative = std::find(signs.begin(), signs.end(), -1) != signs.end();
