@@ -117,10 +117,18 @@ std::vector<ValueDecl> newtonParameters() {
                       "viscous stabilisation only where steps fail without it: such a step "
                       "(after its line-search retry) is solved again at the same step size with "
                       "the factor C, and its cut-backs and the next steps keep it until "
-                      "grow_after of them in a row converged easily; replaces stabilize= and "
-                      "stabilize_share=. 0: off")
+                      "grow_after of them in a row converged easily; replaces stabilize=, "
+                      "stabilize_share= and stabilize_on_failure_share=. 0: off")
               .withRange(Range::atLeast(0))
-              .withDefault(defaultText(defaults.stabilizationOnFailure))};
+              .withDefault(defaultText(defaults.stabilizationOnFailure)),
+          numberValue("stabilize_on_failure_share",
+                      "as stabilize_on_failure, with the factor chosen by the run: after every "
+                      "step that converged without stabilisation, C is set so that a step like it "
+                      "would dissipate this fraction of its work of the loads and supports, and a "
+                      "failing step is stabilised with the last such C; replaces the three "
+                      "above. 0: off")
+              .withRange(Range::between(0, true, 1, false))
+              .withDefault(defaultText(defaults.stabilizationOnFailureShare))};
 }
 
 std::vector<ValueDecl> cutbackParameters() {
@@ -176,19 +184,27 @@ void applyNewtonParameters(const ParsedLine& line, NewtonSpec& newton) {
   if (use("aug_inner")) newton.augmentedInnerTolerance = line.number("aug_inner");
   // One way to set the factor: the last one given replaces the others (a phase's
   // stabilize_share= over the newton line's stabilize=, and back).
-  if (int(use("stabilize")) + int(use("stabilize_share")) + int(use("stabilize_on_failure")) > 1) {
+  const int ways = int(use("stabilize")) + int(use("stabilize_share")) +
+                   int(use("stabilize_on_failure")) + int(use("stabilize_on_failure_share"));
+  if (ways > 1) {
     line.fail(line.where(),
               "give one of stabilize=C (the factor), stabilize_share=F (the factor chosen by "
-              "the run) and stabilize_on_failure=C (the factor for failing steps only)");
+              "the run), stabilize_on_failure=C (the factor for failing steps only) and "
+              "stabilize_on_failure_share=F (the factor for failing steps, chosen by the run)");
   }
-  const auto stabilizeBy = [&newton](double factor, double share, double onFailure) {
+  const auto stabilizeBy = [&newton](double factor, double share, double onFailure,
+                                     double onFailureShare) {
     newton.stabilization = factor;
     newton.stabilizationShare = share;
     newton.stabilizationOnFailure = onFailure;
+    newton.stabilizationOnFailureShare = onFailureShare;
   };
-  if (use("stabilize")) stabilizeBy(line.number("stabilize"), 0, 0);
-  if (use("stabilize_share")) stabilizeBy(0, line.number("stabilize_share"), 0);
-  if (use("stabilize_on_failure")) stabilizeBy(0, 0, line.number("stabilize_on_failure"));
+  if (use("stabilize")) stabilizeBy(line.number("stabilize"), 0, 0, 0);
+  if (use("stabilize_share")) stabilizeBy(0, line.number("stabilize_share"), 0, 0);
+  if (use("stabilize_on_failure")) stabilizeBy(0, 0, line.number("stabilize_on_failure"), 0);
+  if (use("stabilize_on_failure_share")) {
+    stabilizeBy(0, 0, 0, line.number("stabilize_on_failure_share"));
+  }
 }
 
 // The augmented Lagrangian's re-solves start from a converged state whose contact forces the

@@ -181,6 +181,9 @@ bool LoadStepper::runPhase(const PhaseSpec& givenPhase, double phaseStart, Phase
     resumeStepSize_ = false;
     if (position > 0) {
       StepSize resumed = nextStepSize_;
+      if (phase.newton.stabilizationOnFailureShare > 0 && resumeViscousFactor_ > 0) {
+        phase.newton.stabilizationOnFailure = chosenViscousFactor_ = resumeViscousFactor_;
+      }
       // A deck changed for the restart may have dropped stabilize_on_failure from the phase.
       if (!(phase.newton.stabilizationOnFailure > 0)) {
         resumed.stabilizing = false;
@@ -234,6 +237,7 @@ bool LoadStepper::runPhase(const PhaseSpec& givenPhase, double phaseStart, Phase
       position = target;
       // Before acceptStep: the restart record written there carries the chosen factor.
       chooseViscousFactor(phase, targetTime, run);
+      measureFailureFactor(phase, targetTime, control.stabilizing, run);
       if (!acceptStep(phase, result, targetTime, position >= phase.steps, control, run)) {
         return false;
       }
@@ -258,10 +262,15 @@ NewtonResult LoadStepper::solveStabilized(const PhaseSpec& phase, const NewtonSt
                                           PhaseRun& run) {
   ++summary_.stabilizedRetries;
   const double factor = phase.newton.stabilizationOnFailure;
+  const double share = phase.newton.stabilizationOnFailureShare;
+  const std::string given =
+      share > 0
+          ? fmt::format("stabilize_on_failure_share={:g}: C = {:.4g} from {}", share, factor,
+                        measuredFailureStep_ > 0 ? fmt::format("step {}", measuredFailureStep_)
+                                                 : std::string("the restart data"))
+          : fmt::format("stabilize_on_failure={:g}", factor);
   const NewtonStep retry = retryStep(
-      step, failed, dt,
-      fmt::format("retrying the step with viscous stabilisation (stabilize_on_failure={:g}): ",
-                  factor),
+      step, failed, dt, fmt::format("retrying the step with viscous stabilisation ({}): ", given),
       control, run);
   control.stabilizing = true;
   solvedWith = attemptSpec(phase, true);  // the deck's line search, as in the first attempt
@@ -283,6 +292,22 @@ void LoadStepper::chooseViscousFactor(PhaseSpec& phase, double time, const Phase
       "viscous stabilisation: factor C = {:.4g} from step {} on (stabilize_share={:.3g}: a step "
       "like step {}, t = {:.6g}, dissipates that share of its work)",
       factor, run.step + 2, newton.stabilizationShare, run.step + 1, time));
+}
+
+// After every step converged without stabilisation, the factor a failing step after it is
+// stabilised with (NewtonSpec::stabilizationOnFailureShare): C = share |W| dt / sum_a m_a
+// |dx_a|^2 makes a step like this one dissipate `share` of its work W, as for
+// stabilizationShare. The last quasi-static step before a fold measures the motion the
+// stabilisation is to resist there; stabilised steps keep the factor they are solved with.
+void LoadStepper::measureFailureFactor(PhaseSpec& phase, double time, bool stabilizing,
+                                       const PhaseRun& run) {
+  NewtonSpec& newton = phase.newton;
+  if (!(newton.stabilizationOnFailureShare > 0) || stabilizing) return;
+  const double factor = problem_.viscousFactorForShare(newton.stabilizationOnFailureShare, time,
+                                                       run.displacement, newton_->internalForce());
+  if (!(factor > 0) || !std::isfinite(factor)) return;
+  newton.stabilizationOnFailure = chosenViscousFactor_ = factor;
+  measuredFailureStep_ = run.step + 1;
 }
 
 // A failed attempt that is retried on the same step (not cut back): its trial state is

@@ -79,7 +79,8 @@ class LoadStepper {
   const Eigen::VectorXd* lastIncrement() const;
   double lastDt() const;
   // During StepObserver::stepConverged, the viscous stabilisation factor the running phase
-  // chose for the steps after it (NewtonSpec::stabilizationShare; 0: none chosen).
+  // chose for the steps after it (NewtonSpec::stabilizationShare; with
+  // stabilizationOnFailureShare, the factor for the next failing step; 0: none chosen).
   double chosenViscousFactor() const { return chosenViscousFactor_; }
   // Diagnostics: see Newton::setTangentCheck.
   void setTangentCheck(int step, int iteration) { tangentCheck_ = {step, iteration}; }
@@ -109,6 +110,9 @@ class LoadStepper {
                                StepControl& control, PhaseRun& run);
   // NewtonSpec::stabilizationShare: sets the phase's factor from its first converged step.
   void chooseViscousFactor(PhaseSpec& phase, double time, const PhaseRun& run);
+  // NewtonSpec::stabilizationOnFailureShare: sets the phase's stabilize_on_failure factor from
+  // each step that converged without stabilisation.
+  void measureFailureFactor(PhaseSpec& phase, double time, bool stabilizing, const PhaseRun& run);
   bool acceptStep(const PhaseSpec& phase, const NewtonResult& result, double time, bool phaseEnd,
                   StepControl& control, PhaseRun& run);
   std::string withFold(const std::string& message) const;
@@ -126,6 +130,7 @@ class LoadStepper {
   bool resumeStepSize_ = false;     // a restart's step size still waits for its phase
   double resumeViscousFactor_ = 0;  // a restart's chosen factor, for the same phase
   double chosenViscousFactor_ = 0;
+  int measuredFailureStep_ = 0;  // the step measureFailureFactor last measured
   std::pair<int, int> tangentCheck_{-1, -1};
   const PhaseRun* activeRun_ = nullptr;  // during run()
 };

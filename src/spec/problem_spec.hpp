@@ -207,6 +207,14 @@ struct NewtonSpec {
   // its fold lies, and the steps before it keep the quasi-static answer exactly. Never set
   // together with the two above.
   double stabilizationOnFailure = 0;
+  // The same with the factor chosen by the run (deck: `stabilize_on_failure_share=F`; off at 0):
+  // after every step that converged without stabilisation, C is set so that a step like it
+  // would dissipate the fraction F of its work of the loads and supports (as for
+  // stabilizationShare), and a failing step is stabilised with the last such C
+  // (LoadStepper::measureFailureFactor). The factor C depends on the model's units, masses and
+  // speeds; the share does not, so one value serves a mesh refined or a model rescaled. Never
+  // set together with the three above.
+  double stabilizationOnFailureShare = 0;
 };
 
 // The linear solver of the Newton systems (deck: `solve solver=...`, issue 13). Auto keeps the

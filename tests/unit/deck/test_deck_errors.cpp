@@ -128,11 +128,20 @@ std::vector<ErrorCase> valueCases() {
        "newton: stabilize_share must be >= 0 and < 1, got 1"},
       {"StabilizeTwoWays", replaced(6, "  steps 1 dt=1 stabilize=0.1 stabilize_share=0.01"), 6, 3,
        "steps: give one of stabilize=C (the factor), stabilize_share=F (the factor chosen by the "
-       "run) and stabilize_on_failure=C (the factor for failing steps only)"},
+       "run), stabilize_on_failure=C (the factor for failing steps only) and "
+       "stabilize_on_failure_share=F (the factor for failing steps, chosen by the run)"},
       {"StabilizeOnFailureAndFactor",
        replaced(6, "  newton stabilize_on_failure=0.1 stabilize=0.1"), 6, 3,
        "newton: give one of stabilize=C (the factor), stabilize_share=F (the factor chosen by "
-       "the run) and stabilize_on_failure=C (the factor for failing steps only)"},
+       "the run), stabilize_on_failure=C (the factor for failing steps only) and "
+       "stabilize_on_failure_share=F (the factor for failing steps, chosen by the run)"},
+      {"StabilizeOnFailureTwoWays",
+       replaced(6, "  newton stabilize_on_failure=0.1 stabilize_on_failure_share=0.01"), 6, 3,
+       "newton: give one of stabilize=C (the factor), stabilize_share=F (the factor chosen by "
+       "the run), stabilize_on_failure=C (the factor for failing steps only) and "
+       "stabilize_on_failure_share=F (the factor for failing steps, chosen by the run)"},
+      {"StabilizeOnFailureShareOfOne", replaced(6, "  newton stabilize_on_failure_share=1"), 6, 37,
+       "newton: stabilize_on_failure_share must be >= 0 and < 1, got 1"},
       {"NegativeStabilizeOnFailure", replaced(6, "  newton stabilize_on_failure=-1"), 6, 31,
        "newton: stabilize_on_failure must be >= 0, got -1"},
   };

@@ -57,7 +57,7 @@ const ProblemSpec& completeSpec() {
 
 // The viscous factor is set one way at a time: a phase's stabilize_share= replaces the newton
 // line's stabilize= for that phase only, and a later newton line's stabilize= the share;
-// stabilize_on_failure= likewise.
+// stabilize_on_failure= and stabilize_on_failure_share= likewise.
 TEST(DeckParser, StabilizeAndStabilizeShareReplaceEachOther) {
   const ProblemSpec spec = parseDeckText(kMinimalDeck.substr(0, kMinimalDeck.find("solve")) +
                                              "solve\n"
@@ -71,17 +71,23 @@ TEST(DeckParser, StabilizeAndStabilizeShareReplaceEachOther) {
                                              "  newton stabilize_on_failure=0.05\n"
                                              "  steps 1 dt=1\n"
                                              "  steps 1 dt=1 stabilize=0.06\n"
+                                             "  steps 1 dt=1 stabilize_on_failure_share=0.07\n"
+                                             "  newton stabilize_on_failure_share=0.08\n"
+                                             "  steps 1 dt=1\n"
+                                             "  steps 1 dt=1 stabilize_on_failure=0.09\n"
                                              "end\n",
                                          virtualDeckPath());
-  ASSERT_EQ(spec.phases.size(), 7u);
-  const double factors[] = {0.01, 0, 0.01, 0, 0, 0, 0.06};
-  const double shares[] = {0, 0.02, 0, 0.03, 0, 0, 0};
-  const double onFailure[] = {0, 0, 0, 0, 0.04, 0.05, 0};
-  for (std::size_t i = 0; i < 7; ++i) {
+  ASSERT_EQ(spec.phases.size(), 10u);
+  const double factors[] = {0.01, 0, 0.01, 0, 0, 0, 0.06, 0, 0, 0};
+  const double shares[] = {0, 0.02, 0, 0.03, 0, 0, 0, 0, 0, 0};
+  const double onFailure[] = {0, 0, 0, 0, 0.04, 0.05, 0, 0, 0, 0.09};
+  const double onFailureShares[] = {0, 0, 0, 0, 0, 0, 0, 0.07, 0.08, 0};
+  for (std::size_t i = 0; i < 10; ++i) {
     SCOPED_TRACE(i);
     EXPECT_EQ(spec.phases[i].newton.stabilization, factors[i]);
     EXPECT_EQ(spec.phases[i].newton.stabilizationShare, shares[i]);
     EXPECT_EQ(spec.phases[i].newton.stabilizationOnFailure, onFailure[i]);
+    EXPECT_EQ(spec.phases[i].newton.stabilizationOnFailureShare, onFailureShares[i]);
   }
 }
 

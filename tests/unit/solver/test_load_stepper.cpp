@@ -132,6 +132,121 @@ TEST(LoadStepper, GivingUpOnAFoldSaysSo) {
   }
 }
 
+// A chain whose problem answers viscousFactorForShare with share (10 + t): the factor for the
+// step that converged at t, so that a test sees which step a factor was measured at.
+struct MeasuringChain : SpringChain {
+  using SpringChain::SpringChain;
+  double viscousFactorForShare(double share, double time, const Eigen::VectorXd&,
+                               const Eigen::VectorXd&) const override {
+    return share * (10 + time);
+  }
+};
+
+// Records the factor each converged step was solved with (its last evaluation's).
+struct FactorObserver : RecordingObserver {
+  const MeasuringChain* chain = nullptr;
+  std::vector<double> factors;
+  void stepConverged(int step, double time, int iterations, int cutbacks,
+                     const Eigen::VectorXd& displacement, const Eigen::VectorXd& internalForce,
+                     bool writeOutput) override {
+    factors.push_back(chain->items().lastViscousFactor);
+    RecordingObserver::stepConverged(step, time, iterations, cutbacks, displacement, internalForce,
+                                     writeOutput);
+  }
+};
+
+// A linear chain whose steps ending in (2, 3] fail unless stabilised (a fold that stabilisation
+// carries).
+MeasuringChain foldingChain() {
+  MeasuringChain chain(3, SpringLaw::linear(1.0), [](double t) { return 0.1 * t; });
+  chain.items().failThreshold = 0.0;
+  chain.items().failFrom = 2.0;
+  chain.items().failUntil = 3.0;
+  chain.items().failsOnlyUnstabilized = true;
+  return chain;
+}
+
+// stabilize_on_failure_share=F: after every step that converged without stabilisation the
+// factor is measured (here F (10 + t)); a failing step is retried with the last one. Steps
+// ending in (2, 3] fail unless stabilised: step 3 is retried with the factor of step 2
+// (t = 2: 0.1 x 12), step 4 keeps it (the stabilised steps' count towards grow_after = 2),
+// step 5 is quasi-static again and measured anew (0.1 x 15).
+TEST(LoadStepper, AFailingStepIsStabilizedWithTheFactorOfTheLastQuasiStaticStep) {
+  MeasuringChain chain = foldingChain();
+  FactorObserver observer;
+  observer.chain = &chain;
+  PhaseSpec spec = phase(5, 1.0);
+  spec.newton.stabilizationOnFailureShare = 0.1;
+  LoadStepper stepper(chain, observer, {spec});
+  const RunSummary summary = stepper.run();
+  ASSERT_EQ(summary.outcome, RunSummary::Outcome::Completed) << summary.message;
+  EXPECT_EQ(convergedTimes(observer), (std::vector<double>{1, 2, 3, 4, 5}));
+  EXPECT_EQ(summary.stabilizedRetries, 1);
+  EXPECT_EQ(summary.totalCutbacks, 0);
+  ASSERT_EQ(observer.cutbacks.size(), 1u);
+  EXPECT_NE(observer.cutbacks[0].reason.find(
+                "viscous stabilisation (stabilize_on_failure_share=0.1: C = 1.2 from step 2)"),
+            std::string::npos)
+      << observer.cutbacks[0].reason;
+  EXPECT_EQ(observer.factors, (std::vector<double>{0, 0, 0.1 * 12, 0.1 * 12, 0}));
+  EXPECT_EQ(stepper.chosenViscousFactor(), 0.1 * 15);  // measured at step 5
+}
+
+// A restart inside the stabilised stretch goes on stabilised, with the factor of the run it
+// continues (StartState::viscousFactor, from the results file's restart data): step 4 of the
+// run above again with 0.1 x 12, step 5 without.
+TEST(LoadStepper, ARestartGoesOnWithTheMeasuredFailureFactor) {
+  PhaseSpec spec = phase(5, 1.0);
+  spec.newton.stabilizationOnFailureShare = 0.1;
+  // What the full run's step 3 leaves for a restart, as the results writer stores it.
+  struct RestartObserver : RecordingObserver {
+    const LoadStepper* stepper = nullptr;
+    StartState atStep3;
+    void stepConverged(int step, double time, int iterations, int cutbacks,
+                       const Eigen::VectorXd& displacement, const Eigen::VectorXd& internalForce,
+                       bool writeOutput) override {
+      if (step == 3) {
+        atStep3 = {step, time, displacement, stepper->nextStepSize()};
+        atStep3.viscousFactor = stepper->chosenViscousFactor();
+      }
+      RecordingObserver::stepConverged(step, time, iterations, cutbacks, displacement,
+                                       internalForce, writeOutput);
+    }
+  } full;
+  MeasuringChain fullChain = foldingChain();
+  LoadStepper fullStepper(fullChain, full, {spec});
+  full.stepper = &fullStepper;
+  ASSERT_EQ(fullStepper.run().outcome, RunSummary::Outcome::Completed);
+  ASSERT_TRUE(full.atStep3.stepSize.stabilizing);
+  EXPECT_EQ(full.atStep3.viscousFactor, 0.1 * 12);
+
+  MeasuringChain chain = foldingChain();
+  FactorObserver observer;
+  observer.chain = &chain;
+  LoadStepper stepper(chain, observer, {spec});
+  const RunSummary summary = stepper.run(full.atStep3);
+  ASSERT_EQ(summary.outcome, RunSummary::Outcome::Completed) << summary.message;
+  EXPECT_EQ(convergedTimes(observer), (std::vector<double>{4, 5}));
+  EXPECT_EQ(observer.factors, (std::vector<double>{0.1 * 12, 0}));
+}
+
+// Before any step has converged without stabilisation there is no factor: a first step that
+// fails is cut back as without the share.
+TEST(LoadStepper, WithoutAQuasiStaticStepYetAShareDoesNotStabilize) {
+  MeasuringChain chain(3, SpringLaw::linear(1.0), [](double t) { return 0.1 * t; });
+  chain.items().failThreshold = 0.6;
+  chain.items().failsOnlyUnstabilized = true;
+  RecordingObserver observer;
+  PhaseSpec spec = phase(1, 1.0);
+  spec.newton.stabilizationOnFailureShare = 0.1;
+  LoadStepper stepper(chain, observer, {spec});
+  const RunSummary summary = stepper.run();
+  ASSERT_EQ(summary.outcome, RunSummary::Outcome::Completed) << summary.message;
+  EXPECT_EQ(summary.stabilizedRetries, 0);
+  EXPECT_EQ(summary.totalCutbacks, 1);
+  EXPECT_EQ(convergedTimes(observer), (std::vector<double>{0.5, 1.0}));
+}
+
 TEST(LoadStepper, UnsupportedChainStopsAsSingular) {
   // No support in x: a rigid-body mode; smaller steps cannot help.
   SpringChain chain(
