@@ -63,8 +63,9 @@ std::string TangentOrientationWatch::describe() const {
       "likely a limit point of the frictional problem (a stick/slip instability), which smaller "
       "steps do not pass; viscous stabilisation (`newton stabilize=C`) carries a run through "
       "it at the price of a dissipation the run reports (continue from the last converged "
-      "step with --restart; `stabilize_on_failure=C` stabilises only the steps that fail "
-      "without it)",
+      "step with --restart; `stabilize_on_failure_share=F`, e.g. 0.01, stabilises only the "
+      "steps that fail without it, with the factor that makes a step like the last one that "
+      "passed dissipate F of its work)",
       list);
 }
 
