@@ -174,6 +174,7 @@ bool LoadStepper::runPhase(const PhaseSpec& givenPhase, double phaseStart, Phase
   PhaseSpec phase = givenPhase;  // its viscous factor may be chosen on the way
   StepControl control;
   chosenViscousFactor_ = 0;
+  measuredFailureStep_ = 0;
   double position = std::max(0.0, snapped((run.time - phaseStart) / phase.dt));
   if (resumeStepSize_ && position < phase.steps) {
     // A restart inside this phase continues with the stored step size, chosen factor and
