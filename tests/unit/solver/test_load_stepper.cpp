@@ -206,7 +206,10 @@ TEST(LoadStepper, ARestartGoesOnWithTheMeasuredFailureFactor) {
                        const Eigen::VectorXd& displacement, const Eigen::VectorXd& internalForce,
                        bool writeOutput) override {
       if (step == 3) {
-        atStep3 = {step, time, displacement, stepper->nextStepSize()};
+        atStep3.step = step;
+        atStep3.time = time;
+        atStep3.displacement = displacement;
+        atStep3.stepSize = stepper->nextStepSize();
         atStep3.viscousFactor = stepper->chosenViscousFactor();
       }
       RecordingObserver::stepConverged(step, time, iterations, cutbacks, displacement,
