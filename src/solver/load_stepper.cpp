@@ -278,6 +278,15 @@ NewtonResult LoadStepper::solveStabilized(const PhaseSpec& phase, const NewtonSt
   return newton_->solve(retry, solvedWith, run.displacement);
 }
 
+// The factor C that makes a step like the one just converged at `time` (not yet booked)
+// dissipate `share` of its work (NonlinearProblem::viscousFactorForShare); 0 when that step did
+// no work or moved nothing, so that the choice is left to a later step.
+double LoadStepper::factorForShare(double share, double time, const PhaseRun& run) const {
+  const double factor =
+      problem_.viscousFactorForShare(share, time, run.displacement, newton_->internalForce());
+  return factor > 0 && std::isfinite(factor) ? factor : 0.0;
+}
+
 // The phase's first converged step, solved without stabilisation, measures what a step of the
 // phase costs: C = share |W| dt / sum_a m_a |dx_a|^2 makes a step like it dissipate `share` of
 // its work W (NewtonSpec::stabilizationShare). A step that did no work leaves the choice to the
@@ -285,9 +294,8 @@ NewtonResult LoadStepper::solveStabilized(const PhaseSpec& phase, const NewtonSt
 void LoadStepper::chooseViscousFactor(PhaseSpec& phase, double time, const PhaseRun& run) {
   NewtonSpec& newton = phase.newton;
   if (!(newton.stabilizationShare > 0) || newton.stabilization > 0) return;
-  const double factor = problem_.viscousFactorForShare(newton.stabilizationShare, time,
-                                                       run.displacement, newton_->internalForce());
-  if (!(factor > 0) || !std::isfinite(factor)) return;
+  const double factor = factorForShare(newton.stabilizationShare, time, run);
+  if (factor == 0) return;
   newton.stabilization = chosenViscousFactor_ = factor;
   observer_.note(fmt::format(
       "viscous stabilisation: factor C = {:.4g} from step {} on (stabilize_share={:.3g}: a step "
@@ -304,9 +312,8 @@ void LoadStepper::measureFailureFactor(PhaseSpec& phase, double time, bool stabi
                                        const PhaseRun& run) {
   NewtonSpec& newton = phase.newton;
   if (!(newton.stabilizationOnFailureShare > 0) || stabilizing) return;
-  const double factor = problem_.viscousFactorForShare(newton.stabilizationOnFailureShare, time,
-                                                       run.displacement, newton_->internalForce());
-  if (!(factor > 0) || !std::isfinite(factor)) return;
+  const double factor = factorForShare(newton.stabilizationOnFailureShare, time, run);
+  if (factor == 0) return;
   newton.stabilizationOnFailure = chosenViscousFactor_ = factor;
   measuredFailureStep_ = run.step + 1;
 }

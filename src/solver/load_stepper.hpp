@@ -108,6 +108,8 @@ class LoadStepper {
   NewtonResult solveStabilized(const PhaseSpec& phase, const NewtonStep& step,
                                const NewtonResult& failed, double dt, NewtonSpec& solvedWith,
                                StepControl& control, PhaseRun& run);
+  // The viscous factor for `share` of the step just converged (0: none to be had).
+  double factorForShare(double share, double time, const PhaseRun& run) const;
   // NewtonSpec::stabilizationShare: sets the phase's factor from its first converged step.
   void chooseViscousFactor(PhaseSpec& phase, double time, const PhaseRun& run);
   // NewtonSpec::stabilizationOnFailureShare: sets the phase's stabilize_on_failure factor from
