@@ -16,7 +16,7 @@ struct RunOptions {
   bool quiet = false;
   std::string restartFile;               // --restart: continue from a step of this results file
   int restartStep = -1;                  // --from-step; -1 = the last step with restart data
-  std::vector<std::string> dumpTangent;  // --dump-tangent STEP:ITER (repeatable)
+  std::vector<std::string> dumpTangent;  // --dump-tangent STEP:ITER[:ATTEMPT] (repeatable)
   std::string dumpDirectory;             // --dump-dir; empty = beside the results file
   bool newtonLog = false;                // --newton-log: one line per Newton iteration
   std::string checkTangent;              // --check-tangent STEP:ITERATION (diagnostics)
@@ -42,6 +42,15 @@ struct CompareOptionsCli {
 int runCommand(const RunOptions& options);
 int checkCommand(const std::string& deck, bool listKeywords);
 int compareCommand(const CompareOptionsCli& options);
+
+// --dump-tangent's STEP:ITER[:ATTEMPT] (STEP, ITER >= 1, ATTEMPT >= 0, default 0); nullopt
+// when malformed. The command line's validator and the run read it the same way.
+struct TangentDumpSelection {
+  int step = 0;
+  int iteration = 0;
+  int attempt = 0;
+};
+std::optional<TangentDumpSelection> parseTangentDumpSelection(const std::string& text);
 
 // The results path a run writes: -o, else the deck's `output file=`, else <deck stem>.h5 in
 // the working directory.

@@ -113,22 +113,20 @@ int main(int argc, char** argv) {
       ->add_option("--dump-tangent", run.dumpTangent,
                    "Write the Newton system of step STEP, iteration ITER (STEP:ITER) in "
                    "PETSc binary format, with its rigid-body modes (solver/tangent_dump.hpp); "
-                   "repeatable")
+                   "STEP:ITER:ATTEMPT takes it from a later attempt of the step (0 the first, "
+                   "1 the retry after it, ...); repeatable")
       ->check(CLI::Validator(
           [](std::string& value) -> std::string {
-            int step = 0, iteration = 0;
-            char colon = 0, extra = 0;
-            if (std::sscanf(value.c_str(), "%d%c%d%c", &step, &colon, &iteration, &extra) != 3 ||
-                colon != ':' || step < 1 || iteration < 1) {
-              return "expected STEP:ITER with both >= 1, got '" + value + "'";
-            }
-            return {};
+            if (cc::app::parseTangentDumpSelection(value)) return {};
+            return "expected STEP:ITER or STEP:ITER:ATTEMPT (STEP and ITER >= 1, ATTEMPT >= 0), "
+                   "got '" +
+                   value + "'";
           },
-          "STEP:ITER"));
+          "STEP:ITER[:ATTEMPT]"));
   runCommand->add_option(
       "--dump-dir", run.dumpDirectory,
-      "Directory in which --dump-tangent writes <results stem>_tangent_STEP_ITER "
-      "(default: the results file's)");
+      "Directory in which --dump-tangent writes <results stem>_tangent_STEP_ITER (a later "
+      "attempt: _aATTEMPT appended; default: the results file's directory)");
   runCommand
       ->add_option("--solver", run.solver,
                    "Linear solver, overriding the deck's `solve solver=`: auto, cholmod, "

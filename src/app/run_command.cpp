@@ -171,15 +171,24 @@ int exitCodeOf(RunSummary::Outcome outcome) {
   return kExitInternal;
 }
 
-// STEP:ITER of --dump-tangent (checked by the command line parser's validator as well).
-TangentDumpRequest parseDumpRequest(const std::string& text) {
-  TangentDumpRequest request;
-  char colon = 0;
-  std::istringstream in(text);
-  if (!(in >> request.step >> colon >> request.iteration) || colon != ':' || request.step < 1 ||
-      request.iteration < 1 || !in.eof()) {
-    throw std::invalid_argument("--dump-tangent expects STEP:ITER (both >= 1), got '" + text + "'");
+// Where each dump goes: <dir>/<results stem>_tangent_STEP_ITER (a later attempt: _aATTEMPT
+// appended), <dir> = --dump-dir or the results file's directory.
+TangentDumpRequest dumpRequest(const std::string& text, const std::filesystem::path& directory,
+                               const std::string& resultsStem) {
+  const std::optional<TangentDumpSelection> selection = parseTangentDumpSelection(text);
+  if (!selection) {
+    throw std::invalid_argument(
+        "--dump-tangent expects STEP:ITER or STEP:ITER:ATTEMPT (STEP and "
+        "ITER >= 1, ATTEMPT >= 0), got '" +
+        text + "'");
   }
+  TangentDumpRequest request;
+  request.step = selection->step;
+  request.iteration = selection->iteration;
+  request.attempt = selection->attempt;
+  std::string name = fmt::format("{}_tangent_{}_{}", resultsStem, request.step, request.iteration);
+  if (request.attempt > 0) name += fmt::format("_a{}", request.attempt);
+  request.directory = (directory / name).string();
   return request;
 }
 
@@ -190,6 +199,18 @@ double endTime(const ProblemSpec& spec) {
 }
 
 }  // namespace
+
+std::optional<TangentDumpSelection> parseTangentDumpSelection(const std::string& text) {
+  TangentDumpSelection selection;
+  char colon = 0;
+  std::istringstream in(text);
+  if (!(in >> selection.step >> colon >> selection.iteration) || colon != ':') return std::nullopt;
+  if (!in.eof() && !(in >> colon >> selection.attempt && colon == ':')) return std::nullopt;
+  if (!in.eof() || selection.step < 1 || selection.iteration < 1 || selection.attempt < 0) {
+    return std::nullopt;
+  }
+  return selection;
+}
 
 std::string resultsPath(const std::string& deckPath, const std::string& deckOutput,
                         const std::string& commandLineOutput) {
@@ -464,19 +485,13 @@ int runCommand(const RunOptions& options) {
   RunObserver observer(*model, writer, writes, progress, selection.stress, group,
                        writes ? references.get() : nullptr);
   stopAfterIteration();
-  // Each dump goes to <dir>/<results stem>_tangent_STEP_ITER, <dir> = --dump-dir or the
-  // results file's directory.
   std::vector<TangentDumpRequest> dumps;
+  const std::filesystem::path results(path);
+  const std::filesystem::path dumpDirectory = options.dumpDirectory.empty()
+                                                  ? results.parent_path()
+                                                  : std::filesystem::path(options.dumpDirectory);
   for (const std::string& text : options.dumpTangent) {
-    TangentDumpRequest dump = parseDumpRequest(text);
-    const std::filesystem::path results(path);
-    const std::filesystem::path directory = options.dumpDirectory.empty()
-                                                ? results.parent_path()
-                                                : std::filesystem::path(options.dumpDirectory);
-    dump.directory = (directory / fmt::format("{}_tangent_{}_{}", results.stem().string(),
-                                              dump.step, dump.iteration))
-                         .string();
-    dumps.push_back(dump);
+    dumps.push_back(dumpRequest(text, dumpDirectory, results.stem().string()));
   }
   LinearSolverSpec linearSolver = spec.linearSolver;
   if (!options.solver.empty()) {

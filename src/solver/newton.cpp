@@ -469,10 +469,13 @@ std::optional<NewtonResult> Newton::solveCorrection(newton_detail::SolveState& s
   const DofMap& dofs = problem_.dofMap();
   try {
     for (const TangentDumpRequest& dump : dumps_) {
-      if (dump.step != s.step.step || dump.iteration != iteration || s.step.attempt != 0) continue;
+      if (dump.step != s.step.step || dump.iteration != iteration ||
+          dump.attempt != s.step.attempt) {
+        continue;
+      }
       writeTangentDump(dump.directory, tangent_, rhs, dofs, current_);
-      observer_.note(fmt::format("tangent of step {} iteration {} written to {}", s.step.step,
-                                 iteration, dump.directory));
+      observer_.note(fmt::format("tangent of step {} attempt {} iteration {} written to {}",
+                                 s.step.step, s.step.attempt, iteration, dump.directory));
     }
     linear_.setLayout({dofs.freeDofs(), current_, problem_.nodeOwners()});
     linear_.factorize(tangent_);

@@ -110,11 +110,14 @@ inline constexpr double kForcingMin = 1e-12;
 // (docs/verification/sliding.md, forty-first session).
 inline constexpr double kRetryFirstForcing = 1e-5;
 
-// `covcontact run --dump-tangent STEP:ITER`: the system of that Newton iteration is written
-// (solver/tangent_dump.hpp) to `directory` before it is solved.
+// `covcontact run --dump-tangent STEP:ITER[:ATTEMPT]`: the system of that Newton iteration is
+// written (solver/tangent_dump.hpp) to `directory` before it is solved. ATTEMPT counts the
+// step's earlier attempts (NewtonStep::attempt: 0 the first, 1 the line-search retry or first
+// cut-back after it, ...), so that the stalled retry of a step can be dumped too.
 struct TangentDumpRequest {
   int step = 0;       // 0 = none
   int iteration = 0;  // 1-based
+  int attempt = 0;    // NewtonStep::attempt
   std::string directory;
 };
 
