@@ -24,7 +24,7 @@ args = stress_script.parse_args()
 r = stress_script.run_ironing_steps(args, "ironing_nts_mu06_equal.deck", 100,
                                     must_contain=("contact nts", "mu=0.6", "edge=fade",
                                                   "dieWidth=4"),
-                                    may_fail=True)
+                                    may_fail=True, timeout=560)
 output = r.stdout + r.stderr
 failures = []
 if r.returncode == 0:
@@ -52,7 +52,7 @@ if r.returncode == 3:
     s = subprocess.run([args.covcontact, "run", "--threads", "1", stabilized, "--restart",
                         os.path.join(args.scratch, "ironing_nts_mu06_equal_100.h5"), "-o",
                         os.path.join(args.scratch, "ironing_nts_mu06_equal_stabilized.h5")],
-                       capture_output=True, text=True, timeout=280)
+                       capture_output=True, text=True, timeout=560)
     continued = s.stdout + s.stderr
     if s.returncode != 0 or not re.search(r"^step \d+ +t = 0\.7 of 0\.7 ", s.stdout, re.M):
         failures.append(f"the stabilised continuation did not reach t = 0.7 (exit {s.returncode})")

@@ -44,13 +44,14 @@ def ironing_deck_text(args, name, folder="ironing"):
 
 
 def run_ironing_steps(args, name, steps, must_contain=(), folder="ironing", may_fail=False,
-                      newton="", label=""):
+                      newton="", label="", timeout=280):
     """Runs input/stress/FOLDER/NAME (100 steps of dt = 0.01) cut to its first `steps` steps,
     one thread, with --newton-log, in the scratch folder; checks that the deck says each of
     `must_contain`, exits with the run's output if it fails (unless `may_fail`: a script that
     checks a failure itself), and returns the CompletedProcess. `newton` (e.g.
     "line_search=yes") adds a `newton` line to the solution control; `label` tells such a
-    variant's files apart (<deck>_<steps><label>.h5, ..._reactions.csv)."""
+    variant's files apart (<deck>_<steps><label>.h5, ..._reactions.csv). `timeout` (seconds)
+    only guards against a hang: the test's own ctest TIMEOUT must exceed it."""
     source = ironing_deck_text(args, name, folder)
     for text in ("steps 100 dt=0.01",) + tuple(must_contain):
         assert text in source, f"{name} no longer says {text!r}"
@@ -62,7 +63,7 @@ def run_ironing_steps(args, name, steps, must_contain=(), folder="ironing", may_
     open(deck, "w").write(source.replace("steps 100 dt=0.01", f"steps {steps} dt=0.01"))
     r = subprocess.run([args.covcontact, "run", "--threads", "1", "--newton-log", deck, "-o",
                         os.path.join(args.scratch, stem + ".h5")],
-                       capture_output=True, text=True, timeout=280)
+                       capture_output=True, text=True, timeout=timeout)
     if r.returncode != 0 and not may_fail:
         sys.exit(f"the run failed: exit {r.returncode}\n{r.stdout[-3000:]}{r.stderr[-2000:]}")
     return r
