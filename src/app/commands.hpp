@@ -51,6 +51,9 @@ struct TangentDumpSelection {
   int attempt = 0;
 };
 std::optional<TangentDumpSelection> parseTangentDumpSelection(const std::string& text);
+// What a malformed selection is told it should be.
+inline constexpr const char* kTangentDumpForm =
+    "STEP:ITER or STEP:ITER:ATTEMPT (STEP and ITER >= 1, ATTEMPT >= 0)";
 
 // The results path a run writes: -o, else the deck's `output file=`, else <deck stem>.h5 in
 // the working directory.

@@ -118,9 +118,7 @@ int main(int argc, char** argv) {
       ->check(CLI::Validator(
           [](std::string& value) -> std::string {
             if (cc::app::parseTangentDumpSelection(value)) return {};
-            return "expected STEP:ITER or STEP:ITER:ATTEMPT (STEP and ITER >= 1, ATTEMPT >= 0), "
-                   "got '" +
-                   value + "'";
+            return std::string("expected ") + cc::app::kTangentDumpForm + ", got '" + value + "'";
           },
           "STEP:ITER[:ATTEMPT]"));
   runCommand->add_option(

@@ -177,10 +177,8 @@ TangentDumpRequest dumpRequest(const std::string& text, const std::filesystem::p
                                const std::string& resultsStem) {
   const std::optional<TangentDumpSelection> selection = parseTangentDumpSelection(text);
   if (!selection) {
-    throw std::invalid_argument(
-        "--dump-tangent expects STEP:ITER or STEP:ITER:ATTEMPT (STEP and "
-        "ITER >= 1, ATTEMPT >= 0), got '" +
-        text + "'");
+    throw std::invalid_argument(std::string("--dump-tangent expects ") + kTangentDumpForm +
+                                ", got '" + text + "'");
   }
   TangentDumpRequest request;
   request.step = selection->step;
