@@ -84,7 +84,9 @@ int main(int argc, char** argv) {
   runCommand->add_flag("-q,--quiet", run.quiet, "Print only the final summary");
   runCommand->add_flag("--newton-log", run.newtonLog,
                        "Print every Newton iteration: residual, energy, and the contact points "
-                       "that changed state or master segment since the previous iteration; "
+                       "that changed state or master segment since the previous iteration, "
+                       "the sign of the tangent's determinant where a direct solver "
+                       "factorized it (det +/-/0: a change marks a limit point passed); "
                        "with an iterative linear solver, its Krylov iterations and tolerance");
   runCommand
       ->add_option("--check-tangent", run.checkTangent,

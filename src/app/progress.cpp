@@ -42,9 +42,13 @@ void Progress::iteration(const IterationRecord& r) {
     finish();
     printOut(fmt::format(
         "  step {} attempt {} iteration {}  t = {:.6g}  |R|/|R0| = {:.3e}  energy {:.3e}  "
-        "contact: {} active, {} changed state, {} changed segment{}{}\n",
+        "contact: {} active, {} changed state, {} changed segment{}{}{}\n",
         r.step, r.attempt, r.iteration, r.time, r.relativeResidual, r.relativeEnergy,
         r.contact.active, r.contact.state, r.contact.segment,
+        r.determinantSign ? fmt::format("  det {}", *r.determinantSign > 0   ? "+"
+                                                    : *r.determinantSign < 0 ? "-"
+                                                                             : "0")
+                          : std::string(),
         r.krylovTolerance > 0 ? fmt::format("  Krylov: {} iterations to {:.0e}", r.krylovIterations,
                                             r.krylovTolerance)
                               : std::string(),

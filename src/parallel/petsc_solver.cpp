@@ -31,6 +31,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <vector>
 
@@ -120,6 +121,8 @@ class PetscSolver final : public LinearSolver {
   void setLayout(const SystemLayout& layout) override { layout_ = layout; }
   void setStopPoll(std::function<bool()> poll) override { stopPoll_ = std::move(poll); }
   KrylovReport lastSolve() const override { return last_; }
+  // MUMPS: from the last factorization (ICNTL 33); the other backends cannot tell.
+  std::optional<int> determinantSign() override { return determinantSign_; }
   int matrixBlockSize() const override {
     PetscInt blockSize = 1;
     if (matrix_) check(MatGetBlockSize(matrix_, &blockSize), "MatGetBlockSize");
@@ -151,6 +154,7 @@ class PetscSolver final : public LinearSolver {
     const auto start = std::chrono::steady_clock::now();
     ++statistics_.factorizations;
     factored_ = false;
+    determinantSign_.reset();
     setValues(matrix);
     const bool reuseHierarchy = iterative() && hierarchyBuilt_ && !rebuildHierarchy_;
     if (iterative()) {
@@ -177,6 +181,12 @@ class PetscSolver final : public LinearSolver {
     }
     statistics_.factorizationSeconds += secondsSince(start);
     factored_ = true;
+    if (factor_ && method_ == PetscMethod::Mumps) {
+      // det = RINFOG(12) * 2^INFOG(34) (real arithmetic), the same on every process.
+      PetscReal mantissa = 0;
+      check(MatMumpsGetRinfog(factor_, 12, &mantissa), "MatMumpsGetRinfog");
+      determinantSign_ = mantissa > 0 ? 1 : mantissa < 0 ? -1 : 0;
+    }
     if (iterative()) {
       if (reuseHierarchy) {
         ++statistics_.reusedPreconditioners;
@@ -259,6 +269,7 @@ class PetscSolver final : public LinearSolver {
       createSolverSettings();
     }
     factored_ = false;
+    determinantSign_.reset();
     hierarchyBuilt_ = false;
   }
 
@@ -302,6 +313,10 @@ class PetscSolver final : public LinearSolver {
       if (mumpsMargin > 0) check(MatMumpsSetIcntl(factor_, 14, mumpsMargin), "MatMumpsSetIcntl");
       check(MatMumpsGetIcntl(factor_, 14, &lastMumpsMargin_), "MatMumpsGetIcntl");
       check(MatMumpsSetCntl(factor_, 3, kSingularPivotRatio), "MatMumpsSetCntl");
+      // The determinant as a by-product of the factorization (ICNTL 33): its sign serves the
+      // fold verdict of a failing Newton solve (solver/tangent_orientation.hpp) on models too
+      // large, or too distributed, for that watch to factorize copies of its own.
+      check(MatMumpsSetIcntl(factor_, 33, 1), "MatMumpsSetIcntl");
     }
     // Direct: the analysis and numeric factorization; iterative: the AMG hierarchy.
     const OneOpenMpThread oneThread(method_ == PetscMethod::SuperluDist);
@@ -872,6 +887,7 @@ class PetscSolver final : public LinearSolver {
     std::vector<PetscScalar>().swap(diagonalValues_);
     std::vector<PetscScalar>().swap(offValues_);
     factored_ = false;
+    determinantSign_.reset();
     hierarchyBuilt_ = false;
   }
 
@@ -916,8 +932,9 @@ class PetscSolver final : public LinearSolver {
   Vec all_ = nullptr;
   KSP ksp_ = nullptr;
   bool factored_ = false;
-  Mat factor_ = nullptr;          // MUMPS's factor matrix inside the PC (owned by the PC)
-  PetscInt lastMumpsMargin_ = 0;  // ICNTL(14) of the last MUMPS factorization
+  Mat factor_ = nullptr;                // MUMPS's factor matrix inside the PC (owned by the PC)
+  PetscInt lastMumpsMargin_ = 0;        // ICNTL(14) of the last MUMPS factorization
+  std::optional<int> determinantSign_;  // of the matrix MUMPS last factorized
 };
 
 }  // namespace

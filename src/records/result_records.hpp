@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -151,6 +152,10 @@ struct IterationRecord {
   // The fraction of this iteration's update the line search took (1: the whole update); 0 when
   // the update did not go through the line search.
   double lineSearchFraction = 0;
+  // The sign of the determinant of this iteration's tangent (0: singular) where its direct
+  // solver factorized it and could tell (TangentSolver::determinantSign): a sign that changes
+  // between iterations or steps marks a limit point passed (--newton-log prints it).
+  std::optional<int> determinantSign = std::nullopt;
 };
 
 struct CutbackRecord {

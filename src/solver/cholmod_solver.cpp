@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <mutex>
+#include <optional>
 #include <stdexcept>
 #include <vector>
 
@@ -150,6 +151,7 @@ class CholmodSolver final : public LinearSolver {
   void analyzePattern(const SparseMatrix& matrix) override {
     reserveBlasWorkspace();
     const auto start = std::chrono::steady_clock::now();
+    factorized_ = false;
     if (factor_) cholmod_free_factor(&factor_, &common_);
     if (symbolic_) cholmod_free_factor(&symbolic_, &common_);
     cholmod_sparse view = viewOf(matrix);
@@ -167,6 +169,7 @@ class CholmodSolver final : public LinearSolver {
   }
 
   void factorize(const SparseMatrix& matrix) override {
+    factorized_ = false;
     if (!symbolic_ || symbolic_->n != static_cast<std::size_t>(matrix.rows())) {
       throw std::logic_error("CHOLMOD: factorize() before analyzePattern() of this pattern");
     }
@@ -206,6 +209,12 @@ class CholmodSolver final : public LinearSolver {
                                     "pivot {:.3g})",
                                     pivotRatio));
     }
+    factorized_ = true;
+  }
+
+  // A Cholesky factor exists only for a positive definite matrix (a failed one throws).
+  std::optional<int> determinantSign() override {
+    return factorized_ ? std::optional<int>(1) : std::nullopt;
   }
 
   Eigen::VectorXd solve(const Eigen::VectorXd& rhs) override {
@@ -239,6 +248,7 @@ class CholmodSolver final : public LinearSolver {
 
   // The numeric factor goes; the analysis (symbolic_) stays for the next factorize().
   void releaseFactor() override {
+    factorized_ = false;
     if (factor_) cholmod_free_factor(&factor_, &common_);
   }
 
@@ -288,6 +298,7 @@ class CholmodSolver final : public LinearSolver {
   std::vector<int> ordering_;           // permutation of the last fresh analysis
   double freshOrderingFlops_ = 0;       // counted by that analysis
   cholmod_factor* factor_ = nullptr;    // numeric factor, a copy of symbolic_ factorized
+  bool factorized_ = false;             // factor_ holds the last factorize()'s matrix
 };
 
 }  // namespace

@@ -491,6 +491,7 @@ std::optional<NewtonResult> Newton::solveCorrection(newton_detail::SolveState& s
       linear_.setForcing(s.forcing);
     }
     du = linear_.solve(rhs);
+    orientation_.noteSign(iteration, linear_.determinantSign());
     s.krylov = linear_.iterative()
                    ? newton_detail::KrylovSolve{s.forcing, linear_.lastSolve().iterations}
                    : newton_detail::KrylovSolve{};
@@ -500,6 +501,7 @@ std::optional<NewtonResult> Newton::solveCorrection(newton_detail::SolveState& s
     if (failure.kind() != FailureKind::SingularSystem) {
       return failed(iteration, failure.kind(), failure.what());
     }
+    orientation_.noteSign(iteration, 0);  // singular: on the fold itself, if it is one
     // Name what is missing (a support, a contact) rather than only the pivot that showed it.
     SingularStiffnessDiagnosis diagnosis =
         describeSingularStiffness(tangent_.free, dofs, current_, problem_.bodies());
@@ -595,7 +597,8 @@ NewtonResult Newton::solve(const NewtonStep& step, const NewtonSpec& spec,
     observer_.iteration({step.step, step.attempt, iteration, step.time, norms.residual,
                          norms.relativeResidual(), norms.unscaledEnergy(), norms.relativeEnergy(),
                          secondsSince(runStart_), it.changes, s.krylov.tolerance,
-                         s.krylov.iterations, searched ? fraction : 0.0});
+                         s.krylov.iterations, searched ? fraction : 0.0,
+                         linear_.determinantSign()});
     if (atRoundoff || convergedAfterSolve(spec, norms, iteration)) {
       return finishConverged(s, displacement, iteration);
     }

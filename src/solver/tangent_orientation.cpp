@@ -14,31 +14,45 @@
 namespace cc {
 
 void TangentOrientationWatch::observe(int iteration, const SparseMatrix& tangent) {
-  if (distributed_ || iteration < from_ || tangent.rows() == 0 ||
-      tangent.rows() > kOrientationEquations) {
-    return;
-  }
-  kept_.push_back({iteration, tangent});
+  if (iteration < from_ || tangent.rows() == 0) return;
+  Kept kept{iteration, std::nullopt, std::nullopt};
+  if (!distributed_ && tangent.rows() <= kOrientationEquations) kept.tangent = tangent;
+  kept_.push_back(std::move(kept));
   if (kept_.size() > static_cast<std::size_t>(kOrientationWindow)) kept_.pop_front();
 }
+
+void TangentOrientationWatch::noteSign(int iteration, std::optional<int> sign) {
+  if (!kept_.empty() && kept_.back().iteration == iteration) kept_.back().sign = sign;
+}
+
+namespace {
+
+// The sign of a kept tangent's determinant from a UMFPACK factorization of it (0: singular);
+// nothing where it could not be factorized.
+std::optional<int> factorizedSign(const SparseMatrix& tangent) {
+  try {
+    const auto solver = makeUmfpackSolver();
+    solver->analyzePattern(tangent);
+    solver->factorize(tangent);
+    return solver->determinantSign();
+  } catch (const StepFailure& failure) {
+    if (failure.kind() != FailureKind::SingularSystem) return std::nullopt;
+    return 0;  // singular: on the fold itself
+  } catch (const std::exception&) {
+    return std::nullopt;  // no factor (out of memory, OutOfMemory or bad_alloc): nothing to say
+  }
+}
+
+}  // namespace
 
 std::string TangentOrientationWatch::describe() const {
   std::vector<int> signs;
   std::vector<int> iterations;
   for (const std::deque<Kept>* window : {&earlier_, &kept_}) {
     for (const Kept& kept : *window) {
-      std::optional<int> sign;
-      try {
-        const auto solver = makeUmfpackSolver();
-        solver->analyzePattern(kept.tangent);
-        solver->factorize(kept.tangent);
-        sign = solver->determinantSign();
-      } catch (const StepFailure& failure) {
-        if (failure.kind() != FailureKind::SingularSystem) return {};
-        sign = 0;  // singular: on the fold itself
-      } catch (const std::exception&) {
-        return {};  // no factor (out of memory, OutOfMemory or bad_alloc): nothing to say
-      }
+      const std::optional<int> sign = kept.sign      ? kept.sign
+                                      : kept.tangent ? factorizedSign(*kept.tangent)
+                                                     : std::nullopt;
       if (!sign) return {};
       signs.push_back(*sign);
       iterations.push_back(kept.iteration);

@@ -11,17 +11,21 @@
 
 #include <Eigen/Core>
 #include <deque>
+#include <optional>
 #include <string>
 
 #include "fem/sparse_matrix.hpp"
 
 namespace cc {
 
-// Iterations whose tangents are kept: the stick/slip cycles measured repeat within 2-5.
+// Iterations whose tangents are watched: the stick/slip cycles measured repeat within 2-5.
 inline constexpr int kOrientationWindow = 5;
-// Free equations up to which they are kept: five factorizations of a 3D tangent of 20 000
-// equations take about 20 s on one thread (4.3 s each, docs/performance/solvers.md), a bounded
-// price for the message of a run that has given up; larger systems get no verdict.
+// Free equations up to which a copy of a tangent is kept, for the iterations whose solve does
+// not tell its determinant's sign (an iterative solve, a reused factor): five factorizations of
+// a 3D tangent of 20 000 equations take about 20 s on one thread (4.3 s each,
+// docs/performance/solvers.md), a bounded price for the message of a run that has given up.
+// Larger systems, and runs on several processes, get a verdict only from signs their direct
+// solver reported (noteSign).
 inline constexpr Eigen::Index kOrientationEquations = 20000;
 
 class TangentOrientationWatch {
@@ -34,10 +38,10 @@ class TangentOrientationWatch {
     double stabilization = 0;
     bool lineSearch = false;
   };
-  // Keeps the tangents of the last kOrientationWindow iterations of an attempt of at most
-  // maxIterations; only up to kOrientationEquations equations, on one process. The line-search
-  // retry of a failed plain attempt keeps those of the plain attempt as well: both start from
-  // the same converged state, and which of the two passes through tangents of both signs
+  // Watches the tangents of the last kOrientationWindow iterations of an attempt of at most
+  // maxIterations (copies only up to kOrientationEquations equations, on one process). The
+  // line-search retry of a failed plain attempt keeps those of the plain attempt as well: both
+  // start from the same converged state, and which of the two passes through tangents of both signs
   // depends on round-off in the path (ironing_nts_mu06_equal: the retry's up to the
   // forty-fourth session; since an active-set cycle near convergence no longer ends the plain
   // attempt, the plain attempt's).
@@ -53,16 +57,21 @@ class TangentOrientationWatch {
     distributed_ = distributed;
     attempt_ = attempt;
   }
-  // The tangent assembled at `iteration` (kept only within the window: no cost before it).
+  // The tangent assembled at `iteration` (watched only within the window: no cost before it).
   void observe(int iteration, const SparseMatrix& tangent);
-  // Factorizes the kept tangents of both attempts (UMFPACK) and, if their determinants have
-  // both signs, returns the sentence for the failure message; else an empty string.
+  // The sign of that tangent's determinant as the run's own factorization found it (0:
+  // singular), where its solver could tell (TangentSolver::determinantSign).
+  void noteSign(int iteration, std::optional<int> sign);
+  // The signs of the watched tangents of both attempts: noted, else from a factorization of the
+  // kept copy (UMFPACK). If every one is known and they have both signs, returns the sentence
+  // for the failure message; else an empty string.
   std::string describe() const;
 
  private:
   struct Kept {
     int iteration;
-    SparseMatrix tangent;
+    std::optional<SparseMatrix> tangent;  // a copy, where the system is small enough
+    std::optional<int> sign;              // noted from the run's own factorization
   };
   std::deque<Kept> kept_;
   std::deque<Kept> earlier_;  // the window of the plain attempt a line-search retry follows

@@ -21,6 +21,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "fem/assembler.hpp"
@@ -128,6 +129,12 @@ class TangentSolver {
   bool iterative() const { return active_ && active_->iterative(); }
   // The last iterative solve's report (empty after a direct one).
   KrylovReport lastSolve() const { return active_ ? active_->lastSolve() : KrylovReport{}; }
+  // The sign of the determinant of the tangent the last solve used, where its direct backend
+  // factorized it and can tell (UMFPACK, MUMPS; CHOLMOD's factor proves it positive); nothing
+  // after an iterative solve or one with a reused factor (the tangent itself was not factorized).
+  std::optional<int> determinantSign() {
+    return active_ && !reusing_ ? active_->determinantSign() : std::nullopt;
+  }
 
   // Sum over all backends.
   LinearSolverStatistics statistics() const;

@@ -3,8 +3,10 @@ test script:
 
     step K  t = T of END  N iterations  |R|/|R0| = ...                     (a converged step)
       step K attempt A iteration I  t = T  |R|/|R0| = ...  contact: C active, S changed state,
-      G changed segment[  Krylov: K iterations to TOL]                 (--newton-log, one line;
-                                                                        the Krylov part for
+      G changed segment[  det SIGN][  Krylov: K iterations to TOL]     (--newton-log, one line;
+                                                                        the sign after a direct
+                                                                        factorization, the
+                                                                        Krylov part for
                                                                         iterative solves)
 
 Scripts in tests/regression/* import it after `sys.path.insert(0, SUPPORT)`, SUPPORT being
@@ -18,7 +20,7 @@ STEP_LINE = re.compile(r"^step (\d+)\s+t = (\S+) of (\S+)\s+(\d+) iterations", r
 # changed state, points that changed segment.
 ITERATION_LINE = re.compile(r"^\s+step (\d+) attempt (\d+) iteration (\d+) .*contact: (\d+) "
                             r"active, (\d+) changed state, (\d+) changed segment"
-                            r"(?:  Krylov: \d+ iterations to \S+)?$", re.M)
+                            r"(?:  det ([-+0]))?(?:  Krylov: \d+ iterations to \S+)?$", re.M)
 
 
 def converged_steps(stdout):
@@ -34,4 +36,11 @@ def converged_step(line):
 
 def iteration_lines(stdout):
     """[(step, attempt, iteration, active, changed state, changed segment)] of --newton-log."""
-    return [tuple(int(g) for g in m.groups()) for m in ITERATION_LINE.finditer(stdout)]
+    return [tuple(int(g) for g in m.groups()[:6]) for m in ITERATION_LINE.finditer(stdout)]
+
+
+def determinant_signs(stdout):
+    """{(step, attempt, iteration): "+", "-" or "0"} of the --newton-log lines that print the
+    sign of the tangent's determinant (a direct solver's factorization)."""
+    return {tuple(int(g) for g in m.groups()[:3]): m[7] for m in ITERATION_LINE.finditer(stdout)
+            if m[7]}

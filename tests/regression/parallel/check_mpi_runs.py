@@ -5,8 +5,10 @@
   along a base, with cut-backs and an inverted element on the way) on 2 processes: the serial
   run's step times and iteration counts exactly, forces and displacements to 1e-8, the serial
   run's per-iteration contact counts (--newton-log: in contact, changed state, changed segment),
-  at least one contact point whose master segment moved to another process, and one results
-  file written by both processes (parallel HDF5) with the serial file's layout and XDMF.
+  the serial run's determinant signs wherever both runs print one (--newton-log: UMFPACK or
+  CHOLMOD against MUMPS), at least one contact point whose master segment moved to another
+  process, and one results file written by both processes (parallel HDF5) with the serial
+  file's layout and XDMF.
 --case restart: input/stress/restart_6_1.deck on 2 processes stopped by SIGTERM (sent to the
   processes, as a scheduler does) after step 8: exit 4 as in a serial run, every reported step
   in the file; continued with --restart on 1 and on 3 processes, every remaining step as the
@@ -192,6 +194,21 @@ def crossing_case(args):
     check(distributed_log == serial_log,
           f"--newton-log contact counts differ from the serial run's:\n{distributed_log[:20]}\n"
           f"serial:\n{serial_log[:20]}")
+    # The sign of each tangent's determinant, from the serial run's own factorizations (UMFPACK,
+    # CHOLMOD; none where a factor was reused) and from the distributed MUMPS factorizations
+    # (every iteration): the same wherever both tell, a negative one included (the deck's
+    # failed attempt through an inverted element). The fold verdict of a failing step on
+    # several processes rests on these (solver/tangent_orientation.hpp).
+    serial_signs, distributed_signs = (progress_lines.determinant_signs(r.stdout)
+                                       for r in (serial_run, result))
+    check(len(distributed_signs) == len(distributed_log),
+          f"2 processes printed the determinant's sign at {len(distributed_signs)} of "
+          f"{len(distributed_log)} iterations")
+    common = sorted(set(serial_signs) & set(distributed_signs))
+    check(len(common) >= 10 and "-" in (serial_signs[k] for k in common),
+          f"only {len(common)} iterations with a sign in both runs, or none negative")
+    differ = [k for k in common if serial_signs[k] != distributed_signs[k]]
+    check(not differ, f"determinant signs differ at (step, attempt, iteration) {differ}")
     same_layout(serial, distributed)
     compare_energy(serial, distributed)
     moved = [line for line in result.stdout.splitlines()

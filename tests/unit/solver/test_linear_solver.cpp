@@ -136,6 +136,22 @@ TEST(LinearSolver, UmfpackTellsTheSignOfTheDeterminant) {
   }
 }
 
+// CHOLMOD factors only positive definite matrices, so a factor it made proves the sign +1; a
+// matrix it rejects leaves no sign (the grid Laplacian shifted by 0.5 has a negative eigenvalue).
+TEST(LinearSolver, CholmodTellsAPositiveDeterminantOnlyWithAFactor) {
+  auto solver = makeCholmodSolver(kDefaultOrdering);
+  const SparseMatrix positive = gridLaplacian(8, 0.0), indefinite = gridLaplacian(8, 0.5);
+  EXPECT_FALSE(solver->determinantSign());
+  solver->analyzePattern(positive);
+  solver->factorize(positive);
+  EXPECT_EQ(solver->determinantSign(), 1);
+  EXPECT_THROW(solver->factorize(indefinite), StepFailure);
+  EXPECT_FALSE(solver->determinantSign());
+  solver->factorize(positive);
+  solver->releaseFactor();
+  EXPECT_FALSE(solver->determinantSign());
+}
+
 // The fold verdict of a failing step (tangent_orientation.hpp) from the last five tangents of
 // its final attempt and, when that attempt is the line-search retry of a failed plain attempt
 // at the same step, of the plain attempt's too: the grid Laplacian shifted by 0.5 has one
@@ -173,6 +189,40 @@ TEST(TangentOrientation, ALineSearchRetryIsJudgedWithThePlainAttemptBeforeIt) {
     observeWindow(watch, positive);
     EXPECT_EQ(watch.describe(), "") << other.endTime << " " << other.stabilization;
   }
+}
+
+// On several processes, or above kOrientationEquations, the watch keeps no copies: its verdict
+// comes from the signs the run's own direct solver noted (MUMPS, UMFPACK, CHOLMOD), and where
+// one of the window's signs is unknown (an iterative solve) it says nothing.
+TEST(TangentOrientation, WithoutCopiesTheVerdictComesFromTheNotedSigns) {
+  const SparseMatrix small = gridLaplacian(4, 0.0);
+  const TangentOrientationWatch::Attempt attempt{0.5, 0.6, 0.0, false};
+  const auto window = [&](TangentOrientationWatch& watch, bool noteAll) {
+    for (int iteration = 26; iteration <= 30; ++iteration) {
+      watch.observe(iteration, small);
+      if (noteAll || iteration != 28) watch.noteSign(iteration, iteration % 2 ? -1 : 1);
+    }
+  };
+  TangentOrientationWatch watch;
+  watch.begin(30, true, attempt);  // distributed: no copies
+  window(watch, true);
+  EXPECT_NE(watch.describe().find("(26 +, 27 -, 28 +, 29 -, 30 +)"), std::string::npos)
+      << watch.describe();
+  watch.begin(30, true, attempt);
+  window(watch, false);  // iteration 28's sign unknown and no copy to factorize
+  EXPECT_EQ(watch.describe(), "");
+  // On one process the small tangents are kept and the noted signs still win over them: all
+  // five copies are positive definite, the noted signs alternate.
+  watch.begin(30, false, attempt);
+  window(watch, true);
+  EXPECT_NE(watch.describe().find("(26 +, 27 -, 28 +, 29 -, 30 +)"), std::string::npos);
+  // A sign noted for another iteration than the last observed is not taken.
+  watch.begin(30, true, attempt);
+  for (int iteration = 26; iteration <= 30; ++iteration) {
+    watch.observe(iteration, small);
+    watch.noteSign(iteration - 1, -1);
+  }
+  EXPECT_EQ(watch.describe(), "");
 }
 
 // UMFPACK reads the tangent's 32-bit indices in place and moves to 64-bit indices (a widened

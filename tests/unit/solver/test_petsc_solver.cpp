@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -213,6 +214,65 @@ TEST(PetscSolver, SingularSystemIsASingularStepFailure) {
     EXPECT_EQ(failure.kind(), FailureKind::SingularSystem);
     EXPECT_NE(std::string(failure.what()).find("MUMPS"), std::string::npos) << failure.what();
   }
+}
+
+// The sign of the determinant from MUMPS's factorization (ICNTL 33), which the fold verdict of
+// a failing Newton solve takes on models too large for its own factorizations
+// (tangent_orientation.hpp): the 1D Laplacian minus s I has the eigenvalues
+// 2 - 2 cos(k pi / (n + 1)), k = 1..n, so its determinant has the sign (-1)^(number below s);
+// with an unsymmetric perturbation, that of a dense LU's pivots and row permutation. Through
+// the backend and through TangentSolver (solver=mumps); SuperLU_dist cannot tell.
+TEST(PetscSolver, MumpsTellsTheSignOfTheDeterminant) {
+  const double pi = std::acos(-1.0);
+  const int n = 40;
+  const auto shiftedLaplacian = [&](double shift, double skew) {
+    std::vector<Eigen::Triplet<double>> entries;
+    for (int i = 0; i < n; ++i) {
+      entries.emplace_back(i, i, 2.0 - shift);
+      if (i + 1 < n) {
+        entries.emplace_back(i, i + 1, -1.0 + skew * (i % 3 == 0));
+        entries.emplace_back(i + 1, i, -1.0);
+      }
+    }
+    SparseMatrix matrix(n, n);
+    matrix.setFromTriplets(entries.begin(), entries.end());
+    matrix.makeCompressed();
+    return matrix;
+  };
+  const auto denseSign = [](const SparseMatrix& matrix) {
+    const Eigen::PartialPivLU<Eigen::MatrixXd> lu{Eigen::MatrixXd(matrix)};
+    double sign = lu.permutationP().determinant();
+    for (Eigen::Index i = 0; i < matrix.rows(); ++i) sign *= lu.matrixLU()(i, i) > 0 ? 1 : -1;
+    return sign > 0 ? 1 : -1;
+  };
+  auto mumps = makePetscSolver(PetscMethod::Mumps);
+  auto superlu = makePetscSolver(PetscMethod::SuperluDist);
+  TangentSolver tangentSolver(LinearSolverSpec::Method::Mumps);
+  EXPECT_FALSE(mumps->determinantSign());  // nothing factorized yet
+  int version = 0;
+  for (const double shift : {0.0, 0.3, 1.1, 2.5, 3.7}) {
+    int below = 0;
+    for (int k = 1; k <= n; ++k) below += 2 - 2 * std::cos(k * pi / (n + 1)) < shift;
+    for (const double skew : {0.0, 0.4}) {
+      const SparseMatrix matrix = shiftedLaplacian(shift, skew);
+      const int expected = skew == 0 ? (below % 2 ? -1 : 1) : denseSign(matrix);
+      mumps->analyzePattern(matrix);
+      mumps->factorize(matrix);
+      EXPECT_EQ(mumps->determinantSign(), expected) << shift << " " << skew << " " << below;
+      SystemMatrices system;
+      system.free = matrix;
+      system.symmetric = skew == 0;
+      system.patternVersion = ++version;
+      tangentSolver.factorize(system);
+      tangentSolver.solve(Eigen::VectorXd::Ones(n));
+      EXPECT_EQ(tangentSolver.determinantSign(), expected) << shift << " " << skew;
+      superlu->analyzePattern(matrix);
+      superlu->factorize(matrix);
+      EXPECT_FALSE(superlu->determinantSign());
+    }
+  }
+  mumps->releaseFactor();
+  EXPECT_FALSE(mumps->determinantSign());  // no factor, no sign
 }
 
 TEST(PetscSolver, AutoKeepsTheDirectSolversBelowTheBreakEven) {
