@@ -81,7 +81,8 @@ constexpr PetscInt kGmresRestart = 100;
 // before; for benchmarks).
 constexpr double kLaggedRateRatio = 0.7;
 // Relative residual above which a direct solve counts as failed (round-off of a backward-stable
-// LU is ~1e-15 on our tangents; SuperLU_dist's static pivoting can miss by far more).
+// LU is ~1e-15 on our tangents; SuperLU_dist's static pivoting can miss by far more). The PETSc
+// option -cc_direct_residual overrides it (tests: below round-off, every direct solve misses).
 constexpr double kDirectResidual = 1e-8;
 // The largest margin of MUMPS's work arrays beyond the analysis's estimate (ICNTL(14), per
 // cent; MUMPS's default is 20 to 35 by matrix type) that the retries of factorize() go to.
@@ -233,7 +234,7 @@ class PetscSolver final : public LinearSolver {
           fmt::format("{}: stopped on request after {} Krylov iterations", name(), iterations));
     }
     // A direct solve whose residual is far above round-off did not solve the system.
-    if (!iterative() && !(last_.relativeResidual <= kDirectResidual))
+    if (!iterative() && !(last_.relativeResidual <= directResidual_))
       reason = KSP_DIVERGED_BREAKDOWN;
     if (iterative()) judgeHierarchy(reason, iterations);
     if (reason < 0) {
@@ -709,6 +710,8 @@ class PetscSolver final : public LinearSolver {
 
   void createSolver() {
     PetscBool given = PETSC_FALSE;
+    check(PetscOptionsGetReal(nullptr, nullptr, "-cc_direct_residual", &directResidual_, nullptr),
+          "PetscOptionsGetReal");
     check(PetscOptionsGetReal(nullptr, nullptr, "-cc_hierarchy_rate_ratio", &laggedRateRatio_,
                               &given),
           "PetscOptionsGetReal");
@@ -901,6 +904,7 @@ class PetscSolver final : public LinearSolver {
   bool hierarchyBuilt_ = false, rebuildHierarchy_ = false;
   double rateAfterRebuild_ = -1;  // decades per Krylov iteration; negative: not measured yet
   PetscReal laggedRateRatio_ = kLaggedRateRatio;  // or -cc_hierarchy_rate_ratio
+  PetscReal directResidual_ = kDirectResidual;    // or -cc_direct_residual
   Eigen::Index equations_ = 0, nonZeros_ = 0;
   bool embedded_ = false;
   PetscInt size_ = 0;

@@ -42,6 +42,11 @@
   so, and the run must be the MUMPS run's: the same steps and iterations, forces and
   displacements to 1e-8 (before, the failure was taken for a singular tangent and the run stopped
   after its cut-backs with exit 7).
+--case directmiss: the crossing deck with every MUMPS solve counted as missed
+  (PETSC_OPTIONS=-cc_direct_residual 1e-30, as a nearly singular tangent leaves a direct solve):
+  on one process UMFPACK solves each such iteration, says so, and the run is the UMFPACK run
+  (steps, iterations, forces to 1e-8); on 2 processes the run ends as a singular one (exit 7,
+  the reason named), where the second miss used to leave it as an internal error.
 --case errors: `check` on 2 processes prints the serial output once; a deck error on 2
   processes exits with the serial exit code and is reported once; a persistent inverted element (input/stress/inverted_element_persistent.deck) exits
   with the serial code, keeps the same converged steps and names the element once; SIGKILL of
@@ -533,6 +538,40 @@ def setup_case(args):
           f"as the MUMPS run (largest difference {worst:.1e})")
 
 
+def direct_miss_case(args):
+    deck = os.path.join(args.source, "tests/regression/parallel/decks/block_crossing_partition.deck")
+    # Below round-off, every MUMPS solve counts as missed (its residual far above round-off, as
+    # a nearly singular tangent leaves it).
+    environment = dict(os.environ, PETSC_OPTIONS="-cc_direct_residual 1e-30")
+    reference = os.path.join(args.scratch, "umfpack.h5")
+    run_ok(args, 1, "run", deck, "-o", reference, "--solver", "umfpack", "-q")
+    missed = os.path.join(args.scratch, "mumps_missed.h5")
+    serial = subprocess.run(covcontact(args, 1, "run", deck, "-o", missed, "--solver", "mumps",
+                                       "-q"),
+                            cwd=args.scratch, capture_output=True, text=True, timeout=TIMEOUT_S,
+                            env=environment)
+    check(serial.returncode == EXIT["ok"], f"one process, every MUMPS solve missed: exit "
+                                           f"{serial.returncode}\n{serial.stderr}")
+    notes = [line for line in serial.stderr.splitlines() if "relative residual" in line]
+    check(notes and all(line.endswith("; solving this iteration with UMFPACK") for line in notes),
+          f"a missed MUMPS solve without UMFPACK's note: {notes[:1]}")
+    count, worst = compare_steps(reference, missed)
+    # Several processes have no other direct solver: the iteration fails as a singular system,
+    # and the run ends as a singular one does, with its message, not as an internal error.
+    distributed = subprocess.run(covcontact(args, 2, "run", deck, "-o",
+                                            os.path.join(args.scratch, "two.h5"), "-q"),
+                                 cwd=args.scratch, capture_output=True, text=True,
+                                 timeout=TIMEOUT_S, env=environment)
+    output = distributed.stdout + distributed.stderr
+    check(distributed.returncode == 7 and "internal error" not in output,
+          f"2 processes, every MUMPS solve missed: exit {distributed.returncode}, expected 7 "
+          f"(singular)\n{output[-2000:]}")
+    check("the tangent is numerically singular for the direct solver" in output,
+          f"2 processes: the message does not say why\n{output[-2000:]}")
+    print(f"one process: {len(notes)} missed MUMPS solves taken by UMFPACK, {count} steps as the "
+          f"UMFPACK run (largest difference {worst:.1e}); 2 processes: exit 7 with the reason")
+
+
 def wait_until_unlocked(path, seconds=60):
     """Waits until no process holds the writer's lock on `path`. A process being ended still
     holds its files for a moment after its command line has gone from /proc (the kernel frees
@@ -615,7 +654,7 @@ def main():
     parser.add_argument("--case", required=True,
                         choices=["crossing", "restart", "errors", "segments", "augmented",
                                  "predictor", "stabilize", "facets", "damped", "repeat",
-                                 "inexact", "setup"])
+                                 "inexact", "setup", "directmiss"])
     args = parser.parse_args()
     shutil.rmtree(args.scratch, ignore_errors=True)
     os.makedirs(args.scratch)
@@ -623,7 +662,8 @@ def main():
      "segments": segments_case, "augmented": augmented_case,
      "predictor": predictor_case, "stabilize": stabilize_case, "facets": facets_case,
      "damped": damped_case, "repeat": repeat_case,
-     "inexact": inexact_case, "setup": setup_case}[args.case](args)
+     "inexact": inexact_case, "setup": setup_case,
+     "directmiss": direct_miss_case}[args.case](args)
 
 
 if __name__ == "__main__":
