@@ -298,9 +298,9 @@ Eigen::VectorXd TangentSolver::solve(const Eigen::VectorXd& rhs) {
   } catch (const KrylovFailure& failure) {
     if (onGamgProbation()) return leaveGamg(rhs, failure);
     if (!active_->iterative()) return solveAfterDirectMiss(rhs, failure);
-    // A Krylov solve that stalled, or a PETSc direct solve that missed. GAMG stalled on a 3D
-    // bulk mesh under a stiff sliding die (341 k equations), where BoomerAMG needed 5-6 times
-    // fewer Krylov iterations and completed (solvers.md).
+    // A Krylov solve that stalled. GAMG stalled on a 3D bulk mesh under a stiff sliding die
+    // (341 k equations), where BoomerAMG needed 5-6 times fewer Krylov iterations and completed
+    // (solvers.md).
     const bool gamg = active_->name().find("GAMG") != std::string::npos;
     factorizeDirectlyThisIteration(failure.what(),
                                    gamg ? " (if GAMG stalls again, try solver=amg)" : "");
@@ -338,8 +338,9 @@ Eigen::VectorXd TangentSolver::leaveGamg(const Eigen::VectorXd& rhs, const Krylo
 // a Krylov stall, misses again, and the second miss left the run as an internal error (a
 // 33 k-equation ironing drag near a fold, MUMPS at 1.6e-8 of the right-hand side;
 // docs/verification/sliding.md, forty-seventh session). On one process UMFPACK, whose solve
-// refines against the matrix, takes this iteration; on several, or should it miss too, the
-// iteration fails as a singular system, which Newton answers with its retries and cut-backs.
+// refines against the matrix, takes this iteration; on several, where MUMPS is the only direct
+// solver, the iteration fails as a singular system, which Newton answers with its retries and
+// cut-backs.
 Eigen::VectorXd TangentSolver::solveAfterDirectMiss(const Eigen::VectorXd& rhs,
                                                     const KrylovFailure& failure) {
   const std::string what = failure.what();
