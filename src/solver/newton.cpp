@@ -52,6 +52,9 @@ struct SolveState {
   Norms norms;
   double previousResidual = 0, forcing = kForcingMax;
   KrylovSolve krylov;  // this iteration's iterative solve (zero for a direct one)
+  // The sign of this iteration's tangent's determinant, where its factorization told it
+  // (TangentSolver::determinantSign): for the fold watch and the iteration's record.
+  std::optional<int> determinantSign;
   std::vector<std::uint64_t> activeSets;  // signature of the active set, per iteration
   std::vector<double> residualHistory;    // ||rhs|| per iteration
   // A plain attempt whose remaining updates go through the line search: it stagnated near
@@ -491,7 +494,8 @@ std::optional<NewtonResult> Newton::solveCorrection(newton_detail::SolveState& s
       linear_.setForcing(s.forcing);
     }
     du = linear_.solve(rhs);
-    orientation_.noteSign(iteration, linear_.determinantSign());
+    s.determinantSign = linear_.determinantSign();
+    orientation_.noteSign(iteration, s.determinantSign);
     s.krylov = linear_.iterative()
                    ? newton_detail::KrylovSolve{s.forcing, linear_.lastSolve().iterations}
                    : newton_detail::KrylovSolve{};
@@ -597,8 +601,7 @@ NewtonResult Newton::solve(const NewtonStep& step, const NewtonSpec& spec,
     observer_.iteration({step.step, step.attempt, iteration, step.time, norms.residual,
                          norms.relativeResidual(), norms.unscaledEnergy(), norms.relativeEnergy(),
                          secondsSince(runStart_), it.changes, s.krylov.tolerance,
-                         s.krylov.iterations, searched ? fraction : 0.0,
-                         linear_.determinantSign()});
+                         s.krylov.iterations, searched ? fraction : 0.0, s.determinantSign});
     if (atRoundoff || convergedAfterSolve(spec, norms, iteration)) {
       return finishConverged(s, displacement, iteration);
     }

@@ -86,9 +86,11 @@ def covcontact(args, processes, *words):
     return prefix + [args.covcontact, *words]
 
 
-def run(args, processes, *words):
+def run(args, processes, *words, env=None):
+    """`covcontact WORDS` on `processes` processes in the scratch folder; `env` replaces the
+    environment (PETSC_OPTIONS)."""
     return subprocess.run(covcontact(args, processes, *words), cwd=args.scratch,
-                          capture_output=True, text=True, timeout=TIMEOUT_S)
+                          capture_output=True, text=True, timeout=TIMEOUT_S, env=env)
 
 
 def run_ok(args, processes, *words):
@@ -521,10 +523,7 @@ def setup_case(args):
     failing = os.path.join(args.scratch, "gamg_sor.h5")
     environment = dict(os.environ, PETSC_OPTIONS="-cc_gamg_mg_levels_ksp_type richardson "
                                                  "-cc_gamg_mg_levels_pc_type sor")
-    result = subprocess.run(covcontact(args, 2, "run", deck, "-o", failing, "--solver", "gamg",
-                                       "-q"),
-                            cwd=args.scratch, capture_output=True, text=True, timeout=TIMEOUT_S,
-                            env=environment)
+    result = run(args, 2, "run", deck, "-o", failing, "--solver", "gamg", "-q", env=environment)
     check(result.returncode == EXIT["ok"], f"GAMG with SOR: exit {result.returncode}\n"
                                            f"{result.stdout}\n{result.stderr}")
     failed = [line for line in result.stderr.splitlines()
@@ -546,10 +545,7 @@ def direct_miss_case(args):
     reference = os.path.join(args.scratch, "umfpack.h5")
     run_ok(args, 1, "run", deck, "-o", reference, "--solver", "umfpack", "-q")
     missed = os.path.join(args.scratch, "mumps_missed.h5")
-    serial = subprocess.run(covcontact(args, 1, "run", deck, "-o", missed, "--solver", "mumps",
-                                       "-q"),
-                            cwd=args.scratch, capture_output=True, text=True, timeout=TIMEOUT_S,
-                            env=environment)
+    serial = run(args, 1, "run", deck, "-o", missed, "--solver", "mumps", "-q", env=environment)
     check(serial.returncode == EXIT["ok"], f"one process, every MUMPS solve missed: exit "
                                            f"{serial.returncode}\n{serial.stderr}")
     notes = [line for line in serial.stderr.splitlines() if "relative residual" in line]
@@ -558,10 +554,8 @@ def direct_miss_case(args):
     count, worst = compare_steps(reference, missed)
     # Several processes have no other direct solver: the iteration fails as a singular system,
     # and the run ends as a singular one does, with its message, not as an internal error.
-    distributed = subprocess.run(covcontact(args, 2, "run", deck, "-o",
-                                            os.path.join(args.scratch, "two.h5"), "-q"),
-                                 cwd=args.scratch, capture_output=True, text=True,
-                                 timeout=TIMEOUT_S, env=environment)
+    distributed = run(args, 2, "run", deck, "-o", os.path.join(args.scratch, "two.h5"), "-q",
+                      env=environment)
     output = distributed.stdout + distributed.stderr
     check(distributed.returncode == 7 and "internal error" not in output,
           f"2 processes, every MUMPS solve missed: exit {distributed.returncode}, expected 7 "
