@@ -535,9 +535,28 @@ bool LoadStepper::acceptStep(const PhaseSpec& phase, const NewtonResult& result,
 
 // The message of the attempt the stepper gives up on, with Newton's word on a fold of the
 // residual where it has one (Newton::describeFold): then smaller steps were never the remedy.
-std::string LoadStepper::withFold(const std::string& message) const {
+// Without that verdict (tangents of one orientation, or signs unknown) contact points that kept
+// switching through the last attempt still mean no contact pattern the law accepts near this
+// state: the refined ironing drags stop so with positive determinants (sliding.md, sessions 46
+// and 48), as the discrete Coulomb problem loses uniqueness at a friction coefficient that falls
+// as the mesh is refined (Hild 2002; Hassani et al. 2003). Viscous stabilisation carries such
+// steps; a phase that has none is told how to ask for it.
+std::string LoadStepper::withFold(const std::string& message, const PhaseSpec& phase) const {
   const std::string fold = newton_->describeFold();
-  return fold.empty() ? message : message + "; " + fold;
+  if (!fold.empty()) return message + "; " + fold;
+  const NewtonSpec& newton = phase.newton;
+  const bool stabilized = newton.stabilization > 0 || newton.stabilizationShare > 0 ||
+                          newton.stabilizationOnFailure > 0 ||
+                          newton.stabilizationOnFailureShare > 0;
+  if (!newton_->endedSwitchingContact() || stabilized) return message;
+  return message +
+         "; contact points that still switch after every cut-back suggest that no contact "
+         "pattern the law accepts lies near this state (with friction, the discrete problem is "
+         "proven to have one solution only below a friction coefficient that falls as the mesh "
+         "is refined), and smaller steps did not change that; `newton "
+         "stabilize_on_failure_share=F`, "
+         "e.g. 0.01, stabilises only the steps that fail without it, at a dissipation the run "
+         "reports (continue from the last converged step with --restart)";
 }
 
 bool LoadStepper::rejectStep(const PhaseSpec& phase, const NewtonResult& result,
@@ -564,7 +583,7 @@ bool LoadStepper::rejectStep(const PhaseSpec& phase, const NewtonResult& result,
                            : RunSummary::Outcome::Diverged;
     summary_.message =
         fmt::format("step {} to t = {:.6g} (dt = {:.3g}) failed after {} cut-backs: {}", step.step,
-                    step.time, dt, control.cutbacks, withFold(result.message));
+                    step.time, dt, control.cutbacks, withFold(result.message, phase));
     return false;
   }
   // A step shorter than this (in units of the phase's dt) no longer moves time by more than the
@@ -580,7 +599,7 @@ bool LoadStepper::rejectStep(const PhaseSpec& phase, const NewtonResult& result,
         "step {} to t = {:.6g} (dt = {:.3g}) failed after {} cut-backs, and a further cut-back "
         "to dt = {:.3g} would no longer move time (smallest step: {:g} of the phase's dt): {}",
         step.step, step.time, dt, control.cutbacks, nextDt, kMinStepFraction,
-        withFold(result.message));
+        withFold(result.message, phase));
     return false;
   }
   ++control.cutbacks;

@@ -117,7 +117,7 @@ class LoadStepper {
   void measureFailureFactor(PhaseSpec& phase, double time, bool stabilizing, const PhaseRun& run);
   bool acceptStep(const PhaseSpec& phase, const NewtonResult& result, double time, bool phaseEnd,
                   StepControl& control, PhaseRun& run);
-  std::string withFold(const std::string& message) const;
+  std::string withFold(const std::string& message, const PhaseSpec& phase) const;
   bool rejectStep(const PhaseSpec& phase, const NewtonResult& result, const NewtonStep& step,
                   double dt, StepControl& control, PhaseRun& run);
 

@@ -184,6 +184,9 @@ class Newton {
   // message (tangent_orientation.hpp), else empty. Costs a factorization per kept tangent, so
   // the load stepper asks only when it gives up.
   std::string describeFold() const;
+  // Whether the last solve ran out of iterations with contact points switching (state or
+  // segment) at least three times each (Model::describeSwitchingContact).
+  bool endedSwitchingContact() const { return foldCandidate_; }
   // Diagnostics (covcontact run --check-tangent): at this step and iteration, compare the
   // assembled tangent with central differences of the residual (printed to stderr).
   void setTangentCheck(int step, int iteration) { tangentCheck_ = {step, iteration}; }

@@ -38,6 +38,11 @@ struct SpringLaw {
     return {[](double d) { return d < 1 ? d : 1 - 0.5 * (d - 1); },
             [](double d) { return d < 1 ? 1.0 : -0.5; }};
   }
+  // N = d below d = 1 and d + 1 from there: a force between 1 and 2 has no equilibrium, yet
+  // every tangent is +1 (no fold: the positive-determinant stops of the refined ironing drags).
+  static SpringLaw jumped() {
+    return {[](double d) { return d < 1 ? d : d + 1; }, [](double) { return 1.0; }};
+  }
 };
 
 class SpringItems : public Contribution {

@@ -132,6 +132,34 @@ TEST(LoadStepper, GivingUpOnAFoldSaysSo) {
   }
 }
 
+// A jump in the spring's force leaves a pull of 1.5 without equilibrium while every tangent is
+// positive: no fold verdict. With contact points switching, the message then says that smaller
+// steps do not help and names on-failure stabilisation; not when the phase is stabilised already
+// or nothing switched.
+TEST(LoadStepper, GivingUpWhilePointsSwitchWithoutAFoldNamesStabilization) {
+  struct Case {
+    std::string switching;
+    bool stabilized, advised;
+  };
+  for (const Case& c :
+       {Case{"1 contact point kept changing", false, true},
+        Case{"1 contact point kept changing", true, false}, Case{"", false, false}}) {
+    SwitchingChain chain(1, SpringLaw::jumped(), {}, [](double) { return 1.5; });
+    chain.switching = c.switching;
+    RecordingObserver observer;
+    PhaseSpec spec = phase(1, 1.0);
+    if (c.stabilized) spec.newton.stabilizationOnFailure = 1e-12;  // too weak to pass the jump
+    const RunSummary summary = runWithCutbackLimit(chain, observer, spec, 2);
+    ASSERT_EQ(summary.outcome, RunSummary::Outcome::Diverged) << summary.message;
+    EXPECT_EQ(summary.message.find("the tangent's determinant changes sign"), std::string::npos)
+        << summary.message;
+    const bool advised =
+        summary.message.find("stabilize_on_failure_share=F") != std::string::npos &&
+        summary.message.find("smaller steps did not change that") != std::string::npos;
+    EXPECT_EQ(advised, c.advised) << c.switching << " " << c.stabilized << ": " << summary.message;
+  }
+}
+
 // A chain whose problem answers viscousFactorForShare with share (10 + t): the factor for the
 // step that converged at t, so that a test sees which step a factor was measured at.
 struct MeasuringChain : SpringChain {
