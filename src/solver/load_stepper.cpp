@@ -535,12 +535,14 @@ bool LoadStepper::acceptStep(const PhaseSpec& phase, const NewtonResult& result,
 
 // The message of the attempt the stepper gives up on, with Newton's word on a fold of the
 // residual where it has one (Newton::describeFold): then smaller steps were never the remedy.
-// Without that verdict (tangents of one orientation, or signs unknown) contact points that kept
-// switching through the last attempt still mean no contact pattern the law accepts near this
-// state: the refined ironing drags stop so with positive determinants (sliding.md, sessions 46
-// and 48), as the discrete Coulomb problem loses uniqueness at a friction coefficient that falls
-// as the mesh is refined (Hild 2002; Hassani et al. 2003). Viscous stabilisation carries such
-// steps; a phase that has none is told how to ask for it.
+// Without that verdict (tangents of one orientation, or signs unknown), contact points that
+// kept switching through the last attempt still suggest that no contact pattern the law accepts
+// lies near this state: the refined ironing drags stop so, with positive determinants, where
+// friction makes a corner of the slab's top side edges (sliding.md, sessions 46 and 48); the
+// discrete Coulomb problem is proven unique only below a friction coefficient that falls as the
+// mesh is refined (Hild 2002; Hassani et al. 2003). Viscous stabilisation can carry such steps
+// (refined twice: at 0.45 % of the work; three times: only at a factor that dissipates about all
+// of it); a phase without it is told how to ask for it.
 std::string LoadStepper::withFold(const std::string& message, const PhaseSpec& phase) const {
   const std::string fold = newton_->describeFold();
   if (!fold.empty()) return message + "; " + fold;
@@ -553,10 +555,10 @@ std::string LoadStepper::withFold(const std::string& message, const PhaseSpec& p
          "; contact points that still switch after every cut-back suggest that no contact "
          "pattern the law accepts lies near this state (with friction, the discrete problem is "
          "proven to have one solution only below a friction coefficient that falls as the mesh "
-         "is refined), and smaller steps did not change that; `newton "
-         "stabilize_on_failure_share=F`, "
-         "e.g. 0.01, stabilises only the steps that fail without it, at a dissipation the run "
-         "reports (continue from the last converged step with --restart)";
+         "is refined), and smaller steps did not change that; "
+         "`newton stabilize_on_failure_share=F`, e.g. 0.01, stabilises only the steps that fail "
+         "without it, at a dissipation the run reports (continue from the last converged step "
+         "with --restart)";
 }
 
 bool LoadStepper::rejectStep(const PhaseSpec& phase, const NewtonResult& result,
