@@ -540,9 +540,10 @@ bool LoadStepper::acceptStep(const PhaseSpec& phase, const NewtonResult& result,
 // lies near this state: the refined ironing drags stop so, with positive determinants, where
 // friction makes a corner of the slab's top side edges (sliding.md, sessions 46 and 48); the
 // discrete Coulomb problem is proven unique only below a friction coefficient that falls as the
-// mesh is refined (Hild 2002; Hassani et al. 2003). Viscous stabilisation can carry such steps
-// (refined twice: at 0.45 % of the work; three times: only at a factor that dissipates about all
-// of it); a phase without it is told how to ask for it.
+// mesh is refined (Hild 2002; Hassani et al. 2003). Rounding such an edge removes the cause
+// (the refined drags then pass); viscous stabilisation can carry such steps (refined twice: at
+// 0.45 % of the work; three times: only at a factor that dissipates about all of it). A phase
+// without stabilisation is told both.
 std::string LoadStepper::withFold(const std::string& message, const PhaseSpec& phase) const {
   const std::string fold = newton_->describeFold();
   if (!fold.empty()) return message + "; " + fold;
@@ -555,7 +556,9 @@ std::string LoadStepper::withFold(const std::string& message, const PhaseSpec& p
          "; contact points that still switch after every cut-back suggest that no contact "
          "pattern the law accepts lies near this state (with friction, the discrete problem is "
          "proven to have one solution only below a friction coefficient that falls as the mesh "
-         "is refined), and smaller steps did not change that; "
+         "is refined), and smaller steps did not change that; if they sit at a sharp edge of a "
+         "body under a tool it sticks to, that edge is a corner of singular pressure, and "
+         "modelling it rounded removes the cause (input/README.md, \"Contact pairs\"); else "
          "`newton stabilize_on_failure_share=F`, e.g. 0.01, stabilises only the steps that fail "
          "without it, at a dissipation the run reports (continue from the last converged step "
          "with --restart)";
