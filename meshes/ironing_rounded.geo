@@ -2,7 +2,7 @@
 // cross-section given corners of radius rEdge at the top (issue 14). With stick friction under
 // the die, the sharp edge is a corner of singular contact pressure that grows with each mesh
 // refinement, and the refined drags fail there (docs/verification/sliding.md, forty-eighth
-// session); rounded, the pressure stays bounded and they pass.
+// session); rounded, the pressure stays bounded and they pass the steps the sharp slab fails.
 //
 // Slab: [0,L] x [0,W] x [0,H], its top edges along x rounded; nx x ny x nz transfinite
 // hexahedra (na of the ny across the top and na/2 of the nz up each side lie on the arcs).

@@ -541,9 +541,9 @@ bool LoadStepper::acceptStep(const PhaseSpec& phase, const NewtonResult& result,
 // friction makes a corner of the slab's top side edges (sliding.md, sessions 46 and 48); the
 // discrete Coulomb problem is proven unique only below a friction coefficient that falls as the
 // mesh is refined (Hild 2002; Hassani et al. 2003). Rounding such an edge removes the cause
-// (the refined drags then pass); viscous stabilisation can carry such steps (refined twice: at
-// 0.45 % of the work; three times: only at a factor that dissipates about all of it). A phase
-// without stabilisation is told both.
+// (the refined drags then pass the steps they failed); viscous stabilisation can carry such steps
+// (refined twice: at 0.45 % of the work; three times: only at a factor that dissipates about all of
+// it). A phase without stabilisation is told both.
 std::string LoadStepper::withFold(const std::string& message, const PhaseSpec& phase) const {
   const std::string fold = newton_->describeFold();
   if (!fold.empty()) return message + "; " + fold;
