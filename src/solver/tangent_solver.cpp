@@ -297,13 +297,16 @@ Eigen::VectorXd TangentSolver::solve(const Eigen::VectorXd& rhs) {
     solution = reusing_ ? solveWithReusedFactor(rhs) : active_->solve(rhs);
   } catch (const KrylovFailure& failure) {
     if (onGamgProbation()) return leaveGamg(rhs, failure);
-    if (!active_->iterative()) return solveAfterDirectMiss(rhs, failure);
-    // A Krylov solve that stalled. GAMG stalled on a 3D bulk mesh under a stiff sliding die
-    // (341 k equations), where BoomerAMG needed 5-6 times fewer Krylov iterations and completed
-    // (solvers.md).
-    const bool gamg = active_->name().find("GAMG") != std::string::npos;
-    factorizeDirectlyThisIteration(failure.what(),
-                                   gamg ? " (if GAMG stalls again, try solver=amg)" : "");
+    if (active_->iterative()) {
+      // A Krylov solve that stalled. GAMG stalled on a 3D bulk mesh under a stiff sliding die
+      // (341 k equations), where BoomerAMG needed 5-6 times fewer Krylov iterations and
+      // completed (solvers.md).
+      const bool gamg = active_->name().find("GAMG") != std::string::npos;
+      factorizeDirectlyThisIteration(failure.what(),
+                                     gamg ? " (if GAMG stalls again, try solver=amg)" : "");
+    } else {
+      factorizeAfterDirectMiss(failure);
+    }
     solution = active_->solve(rhs);
   }
   if (!solution.allFinite()) {
@@ -338,11 +341,10 @@ Eigen::VectorXd TangentSolver::leaveGamg(const Eigen::VectorXd& rhs, const Krylo
 // a Krylov stall, misses again, and the second miss left the run as an internal error (a
 // 33 k-equation ironing drag near a fold, MUMPS at 1.6e-8 of the right-hand side;
 // docs/verification/sliding.md, forty-seventh session). On one process UMFPACK, whose solve
-// refines against the matrix, takes this iteration; on several, where MUMPS is the only direct
-// solver, the iteration fails as a singular system, which Newton answers with its retries and
-// cut-backs.
-Eigen::VectorXd TangentSolver::solveAfterDirectMiss(const Eigen::VectorXd& rhs,
-                                                    const KrylovFailure& failure) {
+// refines against the matrix, is factorized for this iteration; on several, where MUMPS is the only
+// direct solver, the iteration fails as a singular system, which Newton answers with its retries
+// and cut-backs.
+void TangentSolver::factorizeAfterDirectMiss(const KrylovFailure& failure) {
   const std::string what = failure.what();
   if (distributed_) {
     throw StepFailure(FailureKind::SingularSystem,
@@ -351,12 +353,6 @@ Eigen::VectorXd TangentSolver::solveAfterDirectMiss(const Eigen::VectorXd& rhs,
   ++krylovFallbacks_;
   if (notify_) notify_(what + "; solving this iteration with UMFPACK");
   factorizeWith(general_, *system_);
-  Eigen::VectorXd solution = active_->solve(rhs);
-  if (!solution.allFinite()) {
-    throw StepFailure(FailureKind::NotFinite,
-                      "UMFPACK: solution of the linear system is not finite");
-  }
-  return solution;
 }
 
 void TangentSolver::replaceGamgWithBoomerAmg(const std::string& why) {

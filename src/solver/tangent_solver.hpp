@@ -162,9 +162,10 @@ class TangentSolver {
   void attachPetsc(PetscMethod method);
   bool onGamgProbation() const { return gamgProbation_ && active_ == petsc_.solver.get(); }
   Eigen::VectorXd leaveGamg(const Eigen::VectorXd& rhs, const KrylovFailure& failure);
-  // A PETSc direct solve that missed (its residual far above round-off): UMFPACK on one
-  // process, else a singular-system failure of the iteration.
-  Eigen::VectorXd solveAfterDirectMiss(const Eigen::VectorXd& rhs, const KrylovFailure& failure);
+  // A PETSc direct solve that missed (its residual far above round-off): UMFPACK factorizes
+  // the tangent on one process (solve() then solves with it), else a singular-system failure
+  // of the iteration.
+  void factorizeAfterDirectMiss(const KrylovFailure& failure);
   void replaceGamgWithBoomerAmg(const std::string& why);
   // The iterative PETSc backend's set-up failed with SingularSystem: a direct solver (or, for
   // auto's GAMG, BoomerAMG) factorizes this tangent instead.
