@@ -1,0 +1,262 @@
+#!/usr/bin/python3
+"""The issue's "other code" column, reproduced (issue 14): an ironing deck of
+input/stress/ironing/ written as a CalculiX 2.20 deck on the same gmsh mesh (the deck's mesh
+line: geometry and parameters), with C3D8 (the fully integrated trilinear hexahedron, as our
+Hex8), the decoupled neo-Hooke law W = C10 (I1bar - 3) + (J - 1)^2 / D1 from the deck's E and nu,
+face-to-face penalty contact with the deck's eps_n, eps_t and mu (slab_top the slave, the die's
+cylindrical face the master), and 20 press and 80 slide increments of fixed size. It prints
+Newton iterations per increment in developed sliding (t in (0.4, 1], as
+docs/verification/sliding.md counts ours), cut-backs, the die's mean force, its jitter and the
+CPU time. With --ours the CovContact deck runs right after it, one thread each, with both
+materials `neohooke_decoupled` and `predictor=extrapolate` (the report's column), for a CPU
+time ratio under the same load. One command from a built checkout (about 3 + 2 minutes on the
+deck's mesh):
+
+    /usr/bin/python3 scripts/ironing_calculix.py [--case ironing_sts_mu03_wide] [--ours]
+        [--mesh nx=36 ny=16 ...] [--work DIR] [--limit SECONDS]
+
+--mesh overrides mesh-line parameters for both programs (a refined mesh). Nothing is written
+into the source tree.
+"""
+import argparse
+import os
+import re
+import subprocess
+import sys
+import time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(ROOT, "scripts"))
+import bench_calculix  # noqa: E402
+import ironing_force_level  # noqa: E402
+import ironing_predictor  # noqa: E402
+import ironing_summary  # noqa: E402
+
+DECKS = os.path.join(ROOT, "input", "stress", "ironing")
+
+
+def decoupled_constants(young, poisson):
+    """C10 = mu/2 and D1 = 2/K from the small-strain constants (src/materials/neo_hooke_decoupled.cpp)."""
+    shear = young / (2 * (1 + poisson))
+    bulk = young / (3 * (1 - 2 * poisson))
+    return shear / 2, 2 / bulk
+
+
+def deck_model(case, overrides):
+    """What the CalculiX deck takes from the CovContact deck `case`: the geometry file and its
+    parameters (with `overrides`), the materials {body: (E, nu)}, and eps_n, eps_t, mu."""
+    text = ironing_force_level.deck_text(case, "neohooke")
+    mesh = re.search(r'^mesh "([^"]+)"(.*)$', text, flags=re.M)
+    parameters = dict(item.split("=", 1) for item in mesh.group(2).split())
+    parameters.update(dict(item.split("=", 1) for item in overrides))
+    laws = {name: (float(e), float(nu)) for name, e, nu in re.findall(
+        r"^material (\w+) neohooke E=(\S+) nu=(\S+)$", text, flags=re.M)}
+    bodies = dict(re.findall(r"^elements (\w+) hex8 material=(\w+)$", text, flags=re.M))
+    contact = re.search(r"^contact (\w+) (.*)$", text, flags=re.M)
+    options = dict(item.split("=", 1) for item in contact.group(2).split() if "=" in item)
+    if contact.group(1) not in ("sts", "nts") or "eps_n" not in options:
+        sys.exit(f"{case}: CalculiX needs a meshed die (sts or nts) with eps_n and eps_t given")
+    return {"geo": mesh.group(1), "parameters": parameters,
+            "materials": {body: laws[law] for body, law in bodies.items()},
+            "eps_n": float(options["eps_n"]), "eps_t": float(options.get("eps_t", options["eps_n"])),
+            "mu": float(options.get("mu", 0))}
+
+
+def write_inp(msh, path, model, press_increments, slide_increments):
+    nodes, names, elements = bench_calculix.read_msh2(msh)
+    hexes, volumes, quads = {}, {}, {}
+    for number, (kind, physical, connectivity) in enumerate(elements, start=1):
+        if kind == bench_calculix.GMSH_HEX8:
+            hexes[number] = connectivity
+            volumes.setdefault(names[physical], []).append(number)
+        elif kind == bench_calculix.GMSH_QUAD4:
+            quads.setdefault(names[physical], []).append(connectivity)
+    hexes_by_node = {}
+    for number, connectivity in hexes.items():
+        for node in connectivity:
+            hexes_by_node.setdefault(node, []).append(number)
+    node_set = {name: sorted({n for quad in faces for n in quad}) for name, faces in quads.items()}
+    with open(path, "w") as out:
+        out.write("** Ironing (issue 14) for CalculiX 2.20, written by scripts/ironing_calculix.py\n")
+        out.write("*NODE\n")
+        for tag, (x, y, z) in sorted(nodes.items()):
+            out.write(f"{tag}, {x:.12g}, {y:.12g}, {z:.12g}\n")
+        for name, numbers in volumes.items():
+            out.write(f"*ELEMENT, TYPE=C3D8, ELSET={name}\n")
+            for number in numbers:
+                out.write(f"{number}, " + ", ".join(str(n) for n in hexes[number]) + "\n")
+        for name in ("slab_bottom", "die_top"):
+            out.write(f"*NSET, NSET={name}\n")
+            bench_calculix.write_rows(out, node_set[name])
+        for name in ("slab_top", "die_bottom"):
+            out.write(f"*SURFACE, NAME={name}, TYPE=ELEMENT\n")
+            for element, face in bench_calculix.face_surface(quads[name], hexes_by_node, hexes):
+                out.write(f"{element}, S{face}\n")
+        for name, (young, poisson) in model["materials"].items():
+            c10, d1 = decoupled_constants(young, poisson)
+            out.write(f"*MATERIAL, NAME=M_{name}\n*HYPERELASTIC, NEO HOOKE\n{c10:.12g}, {d1:.12g}\n"
+                      f"*SOLID SECTION, ELSET={name}, MATERIAL=M_{name}\n")
+        out.write(MODEL.format(eps_n=model["eps_n"], eps_t=model["eps_t"], mu=model["mu"],
+                               press_dt=1.0 / press_increments,
+                               slide_dt=1.0 / slide_increments))
+
+
+# The press (die_top down 1.4) and the slide (4 along x) as two steps of fixed increments, as the
+# CovContact decks' 20 + 80 equal steps; *STATIC, DIRECT keeps the increment (a cut-back shows as
+# a repeated attempt in the .sta file).
+MODEL = """\
+*SURFACE INTERACTION, NAME=INTERFACE
+*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR
+{eps_n:g}
+*FRICTION
+{mu:g}, {eps_t:g}
+*CONTACT PAIR, INTERACTION=INTERFACE, TYPE=SURFACE TO SURFACE
+slab_top, die_bottom
+*BOUNDARY
+slab_bottom, 1, 3, 0.
+*STEP, NLGEOM, INC=100000
+*STATIC, DIRECT
+{press_dt:.12g}, 1.
+*BOUNDARY
+die_top, 1, 2, 0.
+die_top, 3, 3, -1.4
+*NODE PRINT, NSET=die_top, TOTALS=ONLY
+RF
+*END STEP
+*STEP, NLGEOM, INC=100000
+*STATIC, DIRECT
+{slide_dt:.12g}, 1.
+*BOUNDARY
+die_top, 1, 1, 4.
+die_top, 2, 2, 0.
+die_top, 3, 3, -1.4
+*NODE PRINT, NSET=die_top, TOTALS=ONLY
+RF
+*END STEP
+"""
+
+# STEP INC ATT ITRS TOT.TIME STEP.TIME INC.TIME
+STA_ROW = re.compile(r"^\s*(\d+)\s+(\d+)\s+(\d+)U?\s+(\d+)\s+[-+.\dEe]+\s+([-+.\dEe]+)")
+
+
+def read_increments(sta):
+    """[(step, increment, attempts, iterations, step time)] from CalculiX's .sta file."""
+    rows = []
+    with open(sta) as stream:
+        for line in stream:
+            match = STA_ROW.match(line)
+            if match:
+                step, inc, attempts, iterations = (int(match.group(k)) for k in range(1, 5))
+                rows.append((step, inc, attempts, iterations, float(match.group(5))))
+    return rows
+
+
+def cpu_seconds_of(command, cwd, limit):
+    """Runs `command`; returns (exit code, CPU seconds of the process tree, wall seconds)."""
+    start = time.monotonic()
+    before = os.times()
+    with open(os.path.join(cwd, "stdout.txt"), "w") as out:
+        try:
+            code = subprocess.run(command, cwd=cwd, stdout=out, stderr=subprocess.STDOUT,
+                                  timeout=limit).returncode
+        except subprocess.TimeoutExpired:
+            code = "time limit"
+    after = os.times()
+    cpu = (after.children_user - before.children_user) + (after.children_system
+                                                          - before.children_system)
+    return code, cpu, time.monotonic() - start
+
+
+def developed(counts_by_time):
+    """Mean iterations per step over t in (0.4, 1] (run time: press 0-0.2, slide 0.2-1)."""
+    values = [n for t, n in counts_by_time if t > 0.4 + 1e-9]
+    return sum(values) / len(values) if values else float("nan")
+
+
+def run_calculix(args, model, work):
+    msh = os.path.join(work, "mesh.msh")
+    bench_calculix.mesh_geo(model["geo"], model["parameters"], msh)
+    write_inp(msh, os.path.join(work, "job.inp"), model, 20, 80)
+    os.environ.update({"OMP_NUM_THREADS": "1", "CCX_NPROC_EQUATION_SOLVER": "1"})
+    code, cpu, wall = cpu_seconds_of(["ccx", "-i", "job"], work, args.limit)
+    rows = read_increments(os.path.join(work, "job.sta"))
+    # Run time: the press step's time t_s in [0, 1] is t = 0.2 t_s, the slide's 0.2 + 0.8 t_s.
+    counts = [((0.2 * t if step == 1 else 0.2 + 0.8 * t), n) for step, _, _, n, t in rows]
+    # The .dat file's times are total times: the press is [0, 1], the slide (1, 2].
+    curve = [((0.2 * t if t <= 1 + 1e-9 else 0.2 + 0.8 * (t - 1)), fx, fz) for t, fx, _, fz in
+             bench_calculix.read_reaction_totals(os.path.join(work, "job.dat"))]
+    result = {"exit": code, "cpu": cpu, "wall": wall, "increments": len(rows),
+              "iterations": sum(r[3] for r in rows), "cutbacks": sum(r[2] - 1 for r in rows),
+              "developed": developed(counts), "t_end": counts[-1][0] if counts else 0.0}
+    result.update(force_metrics(curve))
+    press = [abs(fz) for t, _, fz in curve if abs(t - 0.2) < 1e-9]
+    result["press_fz"] = press[0] if press else float("nan")
+    return result
+
+
+def force_metrics(curve):
+    """Mean |Fz|, mean Fx/Fz and the step-to-step jitter max |F(k+1) - 2F(k) + F(k-1)| / mean
+    over developed sliding, as scripts/ironing_summary.py computes them for CovContact."""
+    rows = [(fx, fz) for t, fx, fz in curve if t > 0.4 + 1e-9]
+    if len(rows) < 3:
+        return {"mean_fz": float("nan"), "fx_over_fz": float("nan"), "jitter_fz": float("nan"),
+                "jitter_ratio": float("nan")}
+    fz = [abs(z) for _, z in rows]
+    ratio = [x / z for x, z in rows]
+    mz, mr = sum(fz) / len(fz), sum(ratio) / len(ratio)
+
+    def jitter(values, mean):
+        return 100 * max(abs(values[k + 1] - 2 * values[k] + values[k - 1])
+                         for k in range(1, len(values) - 1)) / abs(mean)
+    return {"mean_fz": mz, "fx_over_fz": mr, "jitter_fz": jitter(fz, mz),
+            "jitter_ratio": jitter(ratio, mr) if abs(mr) > 1e-12 else 0.0}
+
+
+def run_ours(args, work):
+    """The deck with both materials decoupled, `predictor=extrapolate` and the --mesh overrides."""
+    text = ironing_predictor.with_predictor(
+        ironing_force_level.deck_text(args.case, "neohooke_decoupled"))
+    if args.mesh:
+        text = re.sub(r'^(mesh "[^"]+")(.*)$', lambda m: m.group(1) + " " + " ".join(
+            f"{k}={v}" for k, v in {**dict(item.split("=", 1) for item in m.group(2).split()),
+                                    **dict(item.split("=", 1) for item in args.mesh)}.items()),
+            text, count=1, flags=re.M)
+    deck = os.path.join(work, "ours.deck")
+    open(deck, "w").write(text)
+    command = [args.covcontact, "run", deck, "-o", os.path.join(work, "ours.h5"), "--threads", "1"]
+    code, cpu, wall = cpu_seconds_of(command, work, args.limit)
+    summary = ironing_summary.summarize(os.path.join(work, "ours.h5"))
+    summary.update({"exit": code, "cpu": cpu, "wall": wall})
+    return summary
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--case", default="ironing_sts_mu03_wide",
+                        help="a deck of input/stress/ironing/ (without .deck)")
+    parser.add_argument("--mesh", nargs="*", default=[], help="mesh-line parameters, k=v")
+    parser.add_argument("--ours", action="store_true", help="run the CovContact deck after it")
+    parser.add_argument("--covcontact", default=os.path.join(ROOT, "build", "src", "app",
+                                                             "covcontact"))
+    parser.add_argument("--work", default="/tmp/ironing_calculix")
+    parser.add_argument("--limit", type=float, default=3600, help="seconds per run")
+    args = parser.parse_args()
+    os.makedirs(args.work, exist_ok=True)
+    load = os.getloadavg()[0]
+    result = run_calculix(args, deck_model(args.case, args.mesh), args.work)
+    print(f"load before: {load:.2f}")
+    print("CalculiX 2.20: exit {exit}, {increments} increments to t = {t_end:.3f}, "
+          "{iterations} iterations, {cutbacks} cut-backs, developed {developed:.2f} per "
+          "increment, Fz at t = 0.2 {press_fz:.3f}, mean Fz {mean_fz:.3f}, Fx/Fz {fx_over_fz:.3f}, jitter Fz {jitter_fz:.2f} % "
+          "Fx/Fz {jitter_ratio:.2f} %, CPU {cpu:.1f} s, wall {wall:.1f} s".format(**result))
+    if args.ours:
+        ours = run_ours(args, args.work)
+        print("CovContact: exit {exit}, {steps} steps to t = {final_t:.3f}, {iterations} "
+              "iterations, {cutbacks} cut-backs, developed {its_developed:.2f} per step, mean Fz "
+              "{Fz_mean:.3f}, Fx/Fz {Fx/Fz_mean:.3f}, jitter Fz {jitter_Fz_%:.2f} % Fx/Fz "
+              "{jitter_Fx/Fz_%:.2f} %, CPU {cpu:.1f} s, wall {wall:.1f} s".format(**ours))
+        print(f"CPU time ratio CalculiX / CovContact: {result['cpu'] / ours['cpu']:.2f}")
+
+
+if __name__ == "__main__":
+    main()
