@@ -36,7 +36,8 @@ DECKS = os.path.join(ROOT, "input", "stress", "ironing")
 
 
 def decoupled_constants(young, poisson):
-    """C10 = mu/2 and D1 = 2/K from the small-strain constants (src/materials/neo_hooke_decoupled.cpp)."""
+    """C10 = mu/2 and D1 = 2/K from the small-strain constants, as
+    src/materials/neo_hooke_decoupled.cpp takes them."""
     shear = young / (2 * (1 + poisson))
     bulk = young / (3 * (1 - 2 * poisson))
     return shear / 2, 2 / bulk
@@ -58,11 +59,12 @@ def deck_model(case, overrides):
         sys.exit(f"{case}: CalculiX needs a meshed die (sts or nts) with eps_n and eps_t given")
     return {"geo": mesh.group(1), "parameters": parameters,
             "materials": {body: laws[law] for body, law in bodies.items()},
-            "eps_n": float(options["eps_n"]), "eps_t": float(options.get("eps_t", options["eps_n"])),
+            "eps_n": float(options["eps_n"]),
+            "eps_t": float(options.get("eps_t", options["eps_n"])),
             "mu": float(options.get("mu", 0))}
 
 
-def write_inp(msh, path, model, press_increments, slide_increments):
+def write_inp(msh, path, model, press_increments, slide_increments, cutbacks):
     nodes, names, elements = bench_calculix.read_msh2(msh)
     hexes, volumes, quads = {}, {}, {}
     for number, (kind, physical, connectivity) in enumerate(elements, start=1):
@@ -77,7 +79,7 @@ def write_inp(msh, path, model, press_increments, slide_increments):
             hexes_by_node.setdefault(node, []).append(number)
     node_set = {name: sorted({n for quad in faces for n in quad}) for name, faces in quads.items()}
     with open(path, "w") as out:
-        out.write("** Ironing (issue 14) for CalculiX 2.20, written by scripts/ironing_calculix.py\n")
+        out.write("** Ironing (issue 14) for CalculiX 2.20, by scripts/ironing_calculix.py\n")
         out.write("*NODE\n")
         for tag, (x, y, z) in sorted(nodes.items()):
             out.write(f"{tag}, {x:.12g}, {y:.12g}, {z:.12g}\n")
@@ -97,13 +99,21 @@ def write_inp(msh, path, model, press_increments, slide_increments):
             out.write(f"*MATERIAL, NAME=M_{name}\n*HYPERELASTIC, NEO HOOKE\n{c10:.12g}, {d1:.12g}\n"
                       f"*SOLID SECTION, ELSET={name}, MATERIAL=M_{name}\n")
         out.write(MODEL.format(eps_n=model["eps_n"], eps_t=model["eps_t"], mu=model["mu"],
-                               press_dt=1.0 / press_increments,
-                               slide_dt=1.0 / slide_increments))
+                               static_press=static(1.0 / press_increments, cutbacks),
+                               static_slide=static(1.0 / slide_increments, cutbacks)))
 
 
-# The press (die_top down 1.4) and the slide (4 along x) as two steps of fixed increments, as the
-# CovContact decks' 20 + 80 equal steps; *STATIC, DIRECT keeps the increment (a cut-back shows as
-# a repeated attempt in the .sta file).
+def static(increment, cutbacks):
+    """*STATIC at a fixed increment; with `cutbacks`, CalculiX may cut it back (down to 1e-4 of
+    it) after a failed increment and grow it again up to the fixed size."""
+    if not cutbacks:
+        return f"*STATIC, DIRECT\n{increment:.12g}, 1."
+    return f"*STATIC\n{increment:.12g}, 1., {increment * 1e-4:.12g}, {increment:.12g}"
+
+
+# The press (die_top down 1.4) and the slide (4 along x) as two steps of 20 and 80 increments, as
+# the CovContact decks' equal steps; *STATIC, DIRECT keeps the increment fixed, so that a
+# diverging increment ends the run (--cutbacks: CalculiX's automatic incrementation).
 MODEL = """\
 *SURFACE INTERACTION, NAME=INTERFACE
 *SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR
@@ -115,8 +125,7 @@ slab_top, die_bottom
 *BOUNDARY
 slab_bottom, 1, 3, 0.
 *STEP, NLGEOM, INC=100000
-*STATIC, DIRECT
-{press_dt:.12g}, 1.
+{static_press}
 *BOUNDARY
 die_top, 1, 2, 0.
 die_top, 3, 3, -1.4
@@ -124,8 +133,7 @@ die_top, 3, 3, -1.4
 RF
 *END STEP
 *STEP, NLGEOM, INC=100000
-*STATIC, DIRECT
-{slide_dt:.12g}, 1.
+{static_slide}
 *BOUNDARY
 die_top, 1, 1, 4.
 die_top, 2, 2, 0.
@@ -176,7 +184,7 @@ def developed(counts_by_time):
 def run_calculix(args, model, work):
     msh = os.path.join(work, "mesh.msh")
     bench_calculix.mesh_geo(model["geo"], model["parameters"], msh)
-    write_inp(msh, os.path.join(work, "job.inp"), model, 20, 80)
+    write_inp(msh, os.path.join(work, "job.inp"), model, 20, 80, args.cutbacks)
     os.environ.update({"OMP_NUM_THREADS": "1", "CCX_NPROC_EQUATION_SOLVER": "1"})
     code, cpu, wall = cpu_seconds_of(["ccx", "-i", "job"], work, args.limit)
     rows = read_increments(os.path.join(work, "job.sta"))
@@ -235,27 +243,37 @@ def main():
     parser.add_argument("--case", default="ironing_sts_mu03_wide",
                         help="a deck of input/stress/ironing/ (without .deck)")
     parser.add_argument("--mesh", nargs="*", default=[], help="mesh-line parameters, k=v")
+    parser.add_argument("--cutbacks", action="store_true",
+                        help="let CalculiX cut an increment back (default: fixed increments)")
     parser.add_argument("--ours", action="store_true", help="run the CovContact deck after it")
+    parser.add_argument("--ours-only", action="store_true", help="run only the CovContact deck")
     parser.add_argument("--covcontact", default=os.path.join(ROOT, "build", "src", "app",
                                                              "covcontact"))
     parser.add_argument("--work", default="/tmp/ironing_calculix")
     parser.add_argument("--limit", type=float, default=3600, help="seconds per run")
     args = parser.parse_args()
     os.makedirs(args.work, exist_ok=True)
-    load = os.getloadavg()[0]
-    result = run_calculix(args, deck_model(args.case, args.mesh), args.work)
-    print(f"load before: {load:.2f}")
-    print("CalculiX 2.20: exit {exit}, {increments} increments to t = {t_end:.3f}, "
-          "{iterations} iterations, {cutbacks} cut-backs, developed {developed:.2f} per "
-          "increment, Fz at t = 0.2 {press_fz:.3f}, mean Fz {mean_fz:.3f}, Fx/Fz {fx_over_fz:.3f}, jitter Fz {jitter_fz:.2f} % "
-          "Fx/Fz {jitter_ratio:.2f} %, CPU {cpu:.1f} s, wall {wall:.1f} s".format(**result))
-    if args.ours:
+    print(f"load before: {os.getloadavg()[0]:.2f}", flush=True)
+    calculix = None
+    if not args.ours_only:
+        calculix = run_calculix(args, deck_model(args.case, args.mesh), args.work)
+        report_calculix(calculix)
+    if args.ours or args.ours_only:
         ours = run_ours(args, args.work)
         print("CovContact: exit {exit}, {steps} steps to t = {final_t:.3f}, {iterations} "
               "iterations, {cutbacks} cut-backs, developed {its_developed:.2f} per step, mean Fz "
               "{Fz_mean:.3f}, Fx/Fz {Fx/Fz_mean:.3f}, jitter Fz {jitter_Fz_%:.2f} % Fx/Fz "
               "{jitter_Fx/Fz_%:.2f} %, CPU {cpu:.1f} s, wall {wall:.1f} s".format(**ours))
-        print(f"CPU time ratio CalculiX / CovContact: {result['cpu'] / ours['cpu']:.2f}")
+        if calculix:
+            print(f"CPU time ratio CalculiX / CovContact: {calculix['cpu'] / ours['cpu']:.2f}")
+
+
+def report_calculix(result):
+    print("CalculiX 2.20: exit {exit}, {increments} increments to t = {t_end:.3f}, "
+          "{iterations} iterations, {cutbacks} cut-backs, developed {developed:.2f} per "
+          "increment, Fz at t = 0.2 {press_fz:.3f}, mean Fz {mean_fz:.3f}, Fx/Fz "
+          "{fx_over_fz:.3f}, jitter Fz {jitter_fz:.2f} % Fx/Fz {jitter_ratio:.2f} %, "
+          "CPU {cpu:.1f} s, wall {wall:.1f} s".format(**result))
 
 
 if __name__ == "__main__":
