@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The issue's "other code" column, reproduced (issue 14): an ironing deck of
+"""The issue's "other code" column, reproduced (issue 14): an STS or NTS ironing deck of
 input/stress/ironing/ written as a CalculiX 2.20 deck on the same gmsh mesh (the deck's mesh
 line: geometry and parameters), with C3D8 (the fully integrated trilinear hexahedron, as our
 Hex8), the decoupled neo-Hooke law W = C10 (I1bar - 3) + (J - 1)^2 / D1 from the deck's E and nu,
@@ -12,11 +12,14 @@ materials `neohooke_decoupled` and `predictor=extrapolate` (the report's column)
 time ratio under the same load. One command from a built checkout (about 3 + 2 minutes on the
 deck's mesh):
 
-    /usr/bin/python3 scripts/ironing_calculix.py [--case ironing_sts_mu03_wide] [--ours]
-        [--mesh nx=36 ny=16 ...] [--work DIR] [--limit SECONDS]
+    /usr/bin/python3 scripts/ironing_calculix.py [--case ironing_sts_mu03_wide]
+        [--ours | --ours-only] [--cutbacks] [--mesh nx=36 ny=16 ...] [--work DIR]
+        [--limit SECONDS]
 
---mesh overrides mesh-line parameters for both programs (a refined mesh). Nothing is written
-into the source tree.
+--mesh overrides mesh-line parameters for both programs (a refined mesh); --cutbacks lets
+CalculiX cut an increment back (its automatic incrementation, down to 1e-4 of the increment)
+instead of stopping at the first that diverges. CalculiX's contact is face-to-face whatever the
+deck's kind. Nothing is written into the source tree.
 """
 import argparse
 import os
@@ -32,7 +35,8 @@ import ironing_force_level  # noqa: E402
 import ironing_predictor  # noqa: E402
 import ironing_summary  # noqa: E402
 
-DECKS = os.path.join(ROOT, "input", "stress", "ironing")
+# The loading every ironing deck gives the die, which the CalculiX deck repeats (MODEL below).
+DIE_LOADING = 'prescribe die_top ux "4*max(t-0.2,0)/0.8" uy 0 uz "-1.4*min(t/0.2,1)"'
 
 
 def decoupled_constants(young, poisson):
@@ -57,6 +61,11 @@ def deck_model(case, overrides):
     options = dict(item.split("=", 1) for item in contact.group(2).split() if "=" in item)
     if contact.group(1) not in ("sts", "nts") or "eps_n" not in options:
         sys.exit(f"{case}: CalculiX needs a meshed die (sts or nts) with eps_n and eps_t given")
+    if options.get("slave") != "slab_top" or options.get("master") != "die_bottom":
+        sys.exit(f"{case}: expected slave=slab_top master=die_bottom, as the CalculiX deck has")
+    if DIE_LOADING not in text or "fix slab_bottom all" not in text:
+        sys.exit(f"{case}: expected '{DIE_LOADING}' and 'fix slab_bottom all', which the "
+                 "CalculiX deck repeats")
     return {"geo": mesh.group(1), "parameters": parameters,
             "materials": {body: laws[law] for body, law in bodies.items()},
             "eps_n": float(options["eps_n"]),
@@ -98,7 +107,8 @@ def write_inp(msh, path, model, press_increments, slide_increments, cutbacks):
             c10, d1 = decoupled_constants(young, poisson)
             out.write(f"*MATERIAL, NAME=M_{name}\n*HYPERELASTIC, NEO HOOKE\n{c10:.12g}, {d1:.12g}\n"
                       f"*SOLID SECTION, ELSET={name}, MATERIAL=M_{name}\n")
-        out.write(MODEL.format(eps_n=model["eps_n"], eps_t=model["eps_t"], mu=model["mu"],
+        friction = f"*FRICTION\n{model['mu']:g}, {model['eps_t']:g}\n" if model["mu"] > 0 else ""
+        out.write(MODEL.format(eps_n=model["eps_n"], friction=friction,
                                static_press=static(1.0 / press_increments, cutbacks),
                                static_slide=static(1.0 / slide_increments, cutbacks)))
 
@@ -118,9 +128,7 @@ MODEL = """\
 *SURFACE INTERACTION, NAME=INTERFACE
 *SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR
 {eps_n:g}
-*FRICTION
-{mu:g}, {eps_t:g}
-*CONTACT PAIR, INTERACTION=INTERFACE, TYPE=SURFACE TO SURFACE
+{friction}*CONTACT PAIR, INTERACTION=INTERFACE, TYPE=SURFACE TO SURFACE
 slab_top, die_bottom
 *BOUNDARY
 slab_bottom, 1, 3, 0.
