@@ -85,8 +85,10 @@ def write_rows(out, values, per_line=8):
         out.write(", ".join(str(v) for v in values[k:k + per_line]) + ",\n")
 
 
-def write_inp(msh, path, loading):
-    """CalculiX deck for example 6.1 on the mesh in `msh`; `loading` as in bench.py's LOADING."""
+def write_mesh(out, msh, element_type, node_sets, surfaces):
+    """The mesh in `msh` as CalculiX's *NODE, *ELEMENT (one set per gmsh volume, named as it),
+    *NSET (the nodes of the gmsh surfaces `node_sets`) and *SURFACE (the element faces of the gmsh
+    surfaces `surfaces`) blocks."""
     nodes, names, elements = read_msh2(msh)
     hexes, volumes, quads = {}, {}, {}
     for number, (kind, physical, connectivity) in enumerate(elements, start=1):
@@ -100,26 +102,31 @@ def write_inp(msh, path, loading):
         for node in connectivity:
             hexes_by_node.setdefault(node, []).append(number)
     node_set = {name: sorted({n for quad in faces for n in quad}) for name, faces in quads.items()}
+    out.write("*NODE\n")
+    for tag, (x, y, z) in sorted(nodes.items()):
+        out.write(f"{tag}, {x:.12g}, {y:.12g}, {z:.12g}\n")
+    for name, numbers in volumes.items():
+        out.write(f"*ELEMENT, TYPE={element_type}, ELSET={name}\n")
+        for number in numbers:
+            out.write(f"{number}, " + ", ".join(str(n) for n in hexes[number]) + "\n")
+    for name in node_sets:
+        out.write(f"*NSET, NSET={name}\n")
+        write_rows(out, node_set[name])
+    for name in surfaces:
+        out.write(f"*SURFACE, NAME={name}, TYPE=ELEMENT\n")
+        for element, face in face_surface(quads[name], hexes_by_node, hexes):
+            out.write(f"{element}, S{face}\n")
 
+
+def write_inp(msh, path, loading):
+    """CalculiX deck for example 6.1 on the mesh in `msh`; `loading` as in bench.py's LOADING."""
     with open(path, "w") as out:
         out.write("** Example 6.1 (Konyukhov & Schweizerhof 2005) for CalculiX 2.20, written by\n"
                   "** scripts/bench_calculix.py from the gmsh mesh of meshes/block_on_base.geo\n"
                   "** (the mesh CovContact solves). C3D8I, face-to-face penalty contact.\n")
-        out.write("*NODE\n")
-        for tag, (x, y, z) in sorted(nodes.items()):
-            out.write(f"{tag}, {x:.12g}, {y:.12g}, {z:.12g}\n")
-        for name, numbers in volumes.items():
-            out.write(f"*ELEMENT, TYPE=C3D8I, ELSET={name}\n")
-            for number in numbers:
-                out.write(f"{number}, " + ", ".join(str(n) for n in hexes[number]) + "\n")
-        for name in ("block_top", "base_bottom", "block_front", "block_back", "base_front",
-                     "base_back"):
-            out.write(f"*NSET, NSET={name}\n")
-            write_rows(out, node_set[name])
-        for name in ("block_bottom", "base_top"):
-            out.write(f"*SURFACE, NAME={name}, TYPE=ELEMENT\n")
-            for element, face in face_surface(quads[name], hexes_by_node, hexes):
-                out.write(f"{element}, S{face}\n")
+        write_mesh(out, msh, "C3D8I",
+                   ("block_top", "base_bottom", "block_front", "block_back", "base_front",
+                    "base_back"), ("block_bottom", "base_top"))
         out.write(MODEL_TEMPLATE.format(**loading))
 
 

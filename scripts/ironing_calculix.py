@@ -74,35 +74,10 @@ def deck_model(case, overrides):
 
 
 def write_inp(msh, path, model, press_increments, slide_increments, cutbacks):
-    nodes, names, elements = bench_calculix.read_msh2(msh)
-    hexes, volumes, quads = {}, {}, {}
-    for number, (kind, physical, connectivity) in enumerate(elements, start=1):
-        if kind == bench_calculix.GMSH_HEX8:
-            hexes[number] = connectivity
-            volumes.setdefault(names[physical], []).append(number)
-        elif kind == bench_calculix.GMSH_QUAD4:
-            quads.setdefault(names[physical], []).append(connectivity)
-    hexes_by_node = {}
-    for number, connectivity in hexes.items():
-        for node in connectivity:
-            hexes_by_node.setdefault(node, []).append(number)
-    node_set = {name: sorted({n for quad in faces for n in quad}) for name, faces in quads.items()}
     with open(path, "w") as out:
         out.write("** Ironing (issue 14) for CalculiX 2.20, by scripts/ironing_calculix.py\n")
-        out.write("*NODE\n")
-        for tag, (x, y, z) in sorted(nodes.items()):
-            out.write(f"{tag}, {x:.12g}, {y:.12g}, {z:.12g}\n")
-        for name, numbers in volumes.items():
-            out.write(f"*ELEMENT, TYPE=C3D8, ELSET={name}\n")
-            for number in numbers:
-                out.write(f"{number}, " + ", ".join(str(n) for n in hexes[number]) + "\n")
-        for name in ("slab_bottom", "die_top"):
-            out.write(f"*NSET, NSET={name}\n")
-            bench_calculix.write_rows(out, node_set[name])
-        for name in ("slab_top", "die_bottom"):
-            out.write(f"*SURFACE, NAME={name}, TYPE=ELEMENT\n")
-            for element, face in bench_calculix.face_surface(quads[name], hexes_by_node, hexes):
-                out.write(f"{element}, S{face}\n")
+        bench_calculix.write_mesh(out, msh, "C3D8", ("slab_bottom", "die_top"),
+                                  ("slab_top", "die_bottom"))
         for name, (young, poisson) in model["materials"].items():
             c10, d1 = decoupled_constants(young, poisson)
             out.write(f"*MATERIAL, NAME=M_{name}\n*HYPERELASTIC, NEO HOOKE\n{c10:.12g}, {d1:.12g}\n"
