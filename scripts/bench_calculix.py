@@ -182,17 +182,19 @@ CDIS, CSTR
 
 
 def read_sta(path):
-    """Increments, Newton iterations and attempts (cut-backs) from CalculiX's .sta file."""
-    increments = iterations = attempts = 0
-    pattern = re.compile(r"^\s*(\d+)\s+(\d+)\s+(\d+)U?\s+(\d+)\s+[-+.\dEe]+")
+    """Increments, Newton iterations and cut-backs from CalculiX's .sta file: a row per attempt,
+    a failed one marked U after its attempt number (its iterations count too)."""
+    increments = iterations = cutbacks = 0
+    pattern = re.compile(r"^\s*(\d+)\s+(\d+)\s+(\d+)(U?)\s+(\d+)\s+[-+.\dEe]+")
     with open(path) as stream:
         for line in stream:
             match = pattern.match(line)
             if match:
-                increments += 1
-                attempts += int(match.group(3))
-                iterations += int(match.group(4))
-    return {"increments": increments, "iterations": iterations, "cutbacks": attempts - increments}
+                failed = match.group(4) == "U"
+                cutbacks += failed
+                increments += not failed
+                iterations += int(match.group(5))
+    return {"increments": increments, "iterations": iterations, "cutbacks": cutbacks}
 
 
 def read_reaction_totals(path):
