@@ -219,7 +219,10 @@ def run_ours(args, work):
     open(deck, "w").write(text)
     command = [args.covcontact, "run", deck, "-o", os.path.join(work, "ours.h5"), "--threads", "1"]
     code, cpu, wall = cpu_seconds_of(command, work, args.limit)
-    summary = ironing_summary.summarize(os.path.join(work, "ours.h5"))
+    summary = {key: float("nan") for key in ("its_developed", "Fz_mean", "Fx/Fz_mean",
+                                             "jitter_Fz_%", "jitter_Fx/Fz_%")}
+    # A run that stopped before developed sliding has no developed figures: nan, as CalculiX's.
+    summary.update(ironing_summary.summarize(os.path.join(work, "ours.h5")))
     summary.update({"exit": code, "cpu": cpu, "wall": wall})
     return summary
 
