@@ -24,16 +24,18 @@ deck's kind. Nothing is written into the source tree.
 import argparse
 import os
 import re
-import subprocess
 import sys
-import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "scripts"))
 import bench_calculix  # noqa: E402
+import bench_runs  # noqa: E402
 import ironing_force_level  # noqa: E402
 import ironing_predictor  # noqa: E402
 import ironing_summary  # noqa: E402
+
+# No memory limit of our own: the machine's 24 GiB.
+MEMORY_LIMIT = 1 << 40
 
 # The loading every ironing deck gives the die, which the CalculiX deck repeats (MODEL below).
 DIE_LOADING = 'prescribe die_top ux "4*max(t-0.2,0)/0.8" uy 0 uz "-1.4*min(t/0.2,1)"'
@@ -142,89 +144,72 @@ def read_increments(sta):
     return rows
 
 
-def cpu_seconds_of(command, cwd, limit):
-    """Runs `command`; returns (exit code, CPU seconds of the process tree, wall seconds)."""
-    start = time.monotonic()
-    before = os.times()
-    with open(os.path.join(cwd, "stdout.txt"), "w") as out:
-        try:
-            code = subprocess.run(command, cwd=cwd, stdout=out, stderr=subprocess.STDOUT,
-                                  timeout=limit).returncode
-        except subprocess.TimeoutExpired:
-            code = "time limit"
-    after = os.times()
-    cpu = (after.children_user - before.children_user) + (after.children_system
-                                                          - before.children_system)
-    return code, cpu, time.monotonic() - start
-
-
-def developed(counts_by_time):
-    """Mean iterations per step over t in (0.4, 1] (run time: press 0-0.2, slide 0.2-1)."""
-    values = [n for t, n in counts_by_time if t > 0.4 + 1e-9]
-    return sum(values) / len(values) if values else float("nan")
+def run(command, work, limit):
+    """Runs `command` on one thread (bench_runs.measure: CPU time and exit from the kernel)."""
+    env = dict(os.environ, OMP_NUM_THREADS="1", CCX_NPROC_EQUATION_SOLVER="1")
+    measured = bench_runs.measure(command, work, env, limit, MEMORY_LIMIT)
+    return {"exit": measured["stopped"] or measured["exit_code"], "cpu": measured["cpu"],
+            "wall": measured["wall"]}
 
 
 def run_calculix(args, model, work):
     msh = os.path.join(work, "mesh.msh")
     bench_calculix.mesh_geo(model["geo"], model["parameters"], msh)
     write_inp(msh, os.path.join(work, "job.inp"), model, 20, 80, args.cutbacks)
-    os.environ.update({"OMP_NUM_THREADS": "1", "CCX_NPROC_EQUATION_SOLVER": "1"})
-    code, cpu, wall = cpu_seconds_of(["ccx", "-i", "job"], work, args.limit)
+    result = run(["ccx", "-i", "job"], work, args.limit)
     attempts = read_increments(os.path.join(work, "job.sta"))
-    rows = [row for row in attempts if not row[3]]
     # Run time: the press step's time t_s in [0, 1] is t = 0.2 t_s, the slide's 0.2 + 0.8 t_s.
-    counts = [((0.2 * t if step == 1 else 0.2 + 0.8 * t), n) for step, n, t, _ in rows]
-    # The .dat file's times are total times: the press is [0, 1], the slide (1, 2].
-    curve = [((0.2 * t if t <= 1 + 1e-9 else 0.2 + 0.8 * (t - 1)), fx, fz) for t, fx, _, fz in
+    its_at = {round(0.2 * t if step == 1 else 0.2 + 0.8 * t, 9): n
+              for step, n, t, failed in attempts if not failed}
+    # The .dat file has the converged increments' totals, at total times: press [0, 1], slide
+    # (1, 2].
+    curve = [(round(0.2 * t if t <= 1 + 1e-9 else 0.2 + 0.8 * (t - 1), 9), fx, fz)
+             for t, fx, _, fz in
              bench_calculix.read_reaction_totals(os.path.join(work, "job.dat"))]
-    result = {"exit": code, "cpu": cpu, "wall": wall, "increments": len(rows),
-              "iterations": sum(n for _, n in counts),
-              "failed_iterations": sum(row[1] for row in attempts if row[3]),
-              "cutbacks": len(attempts) - len(rows),
-              "developed": developed(counts), "t_end": counts[-1][0] if counts else 0.0}
-    result.update(force_metrics(curve))
-    press = [abs(fz) for t, _, fz in curve if abs(t - 0.2) < 1e-9]
-    result["press_fz"] = press[0] if press else float("nan")
+    times = [t for t, _, _ in curve]
+    if sorted(times) != sorted(its_at):
+        sys.exit(f"{work}: the .sta and .dat files do not list the same increments")
+    fz = [-z for _, _, z in curve]  # the reaction on die_top: the press pushes down (+z)
+    fx = [-x for _, x, _ in curve]
+    result.update({"steps": len(curve), "final_t": times[-1] if times else 0.0,
+                   "iterations": sum(its_at.values()),
+                   "discarded_iterations": sum(row[1] for row in attempts if row[3]),
+                   "cutbacks": sum(1 for row in attempts if row[3]),
+                   "press_Fz": next((z for t, z in zip(times, fz) if abs(t - 0.2) < 1e-9),
+                                    float("nan"))})
+    result.update(ironing_summary.sliding_metrics(times, [its_at[t] for t in times], fx, fz))
     return result
 
 
-def force_metrics(curve):
-    """Mean |Fz|, mean Fx/Fz and the step-to-step jitter max |F(k+1) - 2F(k) + F(k-1)| / mean
-    over developed sliding, as scripts/ironing_summary.py computes them for CovContact."""
-    rows = [(fx, fz) for t, fx, fz in curve if t > 0.4 + 1e-9]
-    if len(rows) < 3:
-        return {"mean_fz": float("nan"), "fx_over_fz": float("nan"), "jitter_fz": float("nan"),
-                "jitter_ratio": float("nan")}
-    fz = [abs(z) for _, z in rows]
-    ratio = [x / z for x, z in rows]
-    mz, mr = sum(fz) / len(fz), sum(ratio) / len(ratio)
-
-    def jitter(values, mean):
-        return 100 * max(abs(values[k + 1] - 2 * values[k] + values[k - 1])
-                         for k in range(1, len(values) - 1)) / abs(mean)
-    return {"mean_fz": mz, "fx_over_fz": mr, "jitter_fz": jitter(fz, mz),
-            "jitter_ratio": jitter(ratio, mr) if abs(mr) > 1e-12 else 0.0}
-
-
-def run_ours(args, work):
-    """The deck with both materials decoupled, `predictor=extrapolate` and the --mesh overrides."""
+def run_ours(args, model, work):
+    """The deck with both materials decoupled, `predictor=extrapolate` and the mesh line of
+    `model` (the --mesh overrides applied)."""
     text = ironing_predictor.with_predictor(
         ironing_force_level.deck_text(args.case, "neohooke_decoupled"))
-    if args.mesh:
-        text = re.sub(r'^(mesh "[^"]+")(.*)$', lambda m: m.group(1) + " " + " ".join(
-            f"{k}={v}" for k, v in {**dict(item.split("=", 1) for item in m.group(2).split()),
-                                    **dict(item.split("=", 1) for item in args.mesh)}.items()),
-            text, count=1, flags=re.M)
+    mesh_line = f'mesh "{model["geo"]}" ' + " ".join(
+        f"{k}={v}" for k, v in model["parameters"].items())
+    text = re.sub(r'^mesh "[^"]+".*$', lambda _: mesh_line, text, count=1, flags=re.M)
     deck = os.path.join(work, "ours.deck")
     open(deck, "w").write(text)
-    command = [args.covcontact, "run", deck, "-o", os.path.join(work, "ours.h5"), "--threads", "1"]
-    code, cpu, wall = cpu_seconds_of(command, work, args.limit)
-    summary = {key: float("nan") for key in ("its_developed", "Fz_mean", "Fx/Fz_mean",
-                                             "jitter_Fz_%", "jitter_Fx/Fz_%")}
-    # A run that stopped before developed sliding has no developed figures: nan, as CalculiX's.
-    summary.update(ironing_summary.summarize(os.path.join(work, "ours.h5")))
-    summary.update({"exit": code, "cpu": cpu, "wall": wall})
-    return summary
+    stem = os.path.join(work, "ours")
+    result = run([args.covcontact, "run", deck, "-o", stem + ".h5", "--threads", "1"], work,
+                 args.limit)
+    result.update(ironing_summary.summarize(stem + ".h5"))
+    result["press_Fz"] = ironing_force_level.press_force(stem)
+    return result
+
+
+def report(program, result):
+    """One line per run; nan where the run stopped before developed sliding."""
+    values = {key: float("nan") for key in ("its_developed", "Fz_mean", "Fx/Fz_mean",
+                                            "jitter_Fz_%", "jitter_Fx/Fz_%")}
+    values.update(result)
+    print(f"{program}: exit {{exit}}, {{steps}} steps to t = {{final_t:.3f}}, {{iterations}} "
+          "iterations (+{discarded_iterations} in failed attempts), {cutbacks} cut-backs, "
+          "developed {its_developed:.2f} per step, Fz at t = 0.2 {press_Fz:.3f}, mean Fz "
+          "{Fz_mean:.3f}, Fx/Fz {Fx/Fz_mean:.3f}, jitter Fz {jitter_Fz_%:.2f} % Fx/Fz "
+          "{jitter_Fx/Fz_%:.2f} %, CPU {cpu:.1f} s, wall {wall:.1f} s".format(**values),
+          flush=True)
 
 
 def main():
@@ -243,26 +228,16 @@ def main():
     args = parser.parse_args()
     os.makedirs(args.work, exist_ok=True)
     print(f"load before: {os.getloadavg()[0]:.2f}", flush=True)
+    model = deck_model(args.case, args.mesh)
     calculix = None
     if not args.ours_only:
-        calculix = run_calculix(args, deck_model(args.case, args.mesh), args.work)
-        report_calculix(calculix)
+        calculix = run_calculix(args, model, args.work)
+        report("CalculiX 2.20", calculix)
     if args.ours or args.ours_only:
-        ours = run_ours(args, args.work)
-        print("CovContact: exit {exit}, {steps} steps to t = {final_t:.3f}, {iterations} "
-              "iterations, {cutbacks} cut-backs, developed {its_developed:.2f} per step, mean Fz "
-              "{Fz_mean:.3f}, Fx/Fz {Fx/Fz_mean:.3f}, jitter Fz {jitter_Fz_%:.2f} % Fx/Fz "
-              "{jitter_Fx/Fz_%:.2f} %, CPU {cpu:.1f} s, wall {wall:.1f} s".format(**ours))
+        ours = run_ours(args, model, args.work)
+        report("CovContact", ours)
         if calculix:
             print(f"CPU time ratio CalculiX / CovContact: {calculix['cpu'] / ours['cpu']:.2f}")
-
-
-def report_calculix(result):
-    print("CalculiX 2.20: exit {exit}, {increments} increments to t = {t_end:.3f}, "
-          "{iterations} iterations (+{failed_iterations} in failed attempts), {cutbacks} "
-          "cut-backs, developed {developed:.2f} per increment, Fz at t = 0.2 {press_fz:.3f}, "
-          "mean Fz {mean_fz:.3f}, Fx/Fz {fx_over_fz:.3f}, jitter Fz {jitter_fz:.2f} % Fx/Fz "
-          "{jitter_ratio:.2f} %, CPU {cpu:.1f} s, wall {wall:.1f} s".format(**result))
 
 if __name__ == "__main__":
     main()

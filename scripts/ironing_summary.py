@@ -18,6 +18,27 @@ os.environ.setdefault("HDF5_USE_FILE_LOCKING", "FALSE")
 import h5py  # noqa: E402
 
 
+def sliding_metrics(t, its, fx, fz):
+    """Developed sliding (t > 0.4) from per-step lists: mean iterations per step, mean Fz and
+    Fx/Fz, and their step-to-step jitter max |F(k+1) - 2F(k) + F(k-1)| / mean in percent; {}
+    before the run has three developed steps. Also used for CalculiX (ironing_calculix.py)."""
+    d = [k for k, tk in enumerate(t) if tk > 0.4 + 1e-9]
+    if len(d) <= 2:
+        return {}
+    out = {"its_developed": sum(its[k] for k in d) / len(d)}
+    mz = sum(fz[k] for k in d) / len(d)
+    ratio = [fx[k] / fz[k] for k in d]
+    mr = sum(ratio) / len(ratio)
+    out["Fz_mean"] = mz
+    out["Fx/Fz_mean"] = mr
+    out["jitter_Fz_%"] = 100 * max(abs(fz[d[i + 1]] - 2 * fz[d[i]] + fz[d[i - 1]])
+                                   for i in range(1, len(d) - 1)) / abs(mz)
+    if abs(mr) > 1e-12:
+        out["jitter_Fx/Fz_%"] = 100 * max(abs(ratio[i + 1] - 2 * ratio[i] + ratio[i - 1])
+                                          for i in range(1, len(d) - 1)) / abs(mr)
+    return out
+
+
 def summarize(path):
     stem = path[:-3] if path.endswith(".h5") else path
     rows = list(csv.DictReader(open(stem + "_reactions.csv")))
@@ -28,7 +49,6 @@ def summarize(path):
         attempts = len(f["cutbacks"]) if "cutbacks" in f else 0
     t = [float(r["time"]) for r in rows]
     its = [int(r["iterations"]) for r in rows]
-    developed = [k for k, tk in enumerate(t) if tk > 0.4 + 1e-9]
     pairs = [c[:-3] for c in (rows[0] if rows else {}) if c.startswith("contact_") and
              c.endswith("_Fz")]
     stem_of_force = pairs[0] if pairs else "slab_bottom"
@@ -48,19 +68,7 @@ def summarize(path):
     }
     if isinstance(out["outcome"], bytes):
         out["outcome"] = out["outcome"].decode()
-    if len(developed) > 2:
-        out["its_developed"] = sum(its[k] for k in developed) / len(developed)
-        mz = sum(fz[k] for k in developed) / len(developed)
-        ratio = [fx[k] / fz[k] for k in developed]
-        mr = sum(ratio) / len(ratio)
-        out["Fz_mean"] = mz
-        out["Fx/Fz_mean"] = mr
-        d = developed
-        out["jitter_Fz_%"] = 100 * max(abs(fz[d[i + 1]] - 2 * fz[d[i]] + fz[d[i - 1]])
-                                       for i in range(1, len(d) - 1)) / abs(mz)
-        if abs(mr) > 1e-12:
-            out["jitter_Fx/Fz_%"] = 100 * max(abs(ratio[i + 1] - 2 * ratio[i] + ratio[i - 1])
-                                              for i in range(1, len(d) - 1)) / abs(mr)
+    out.update(sliding_metrics(t, its, fx, fz))
     return out
 
 
