@@ -6,7 +6,6 @@ against CPU time per contact kind, the penalty-convergence plot and example 6.1 
 finest run. The narrative (what limits each case, recommended settings) is in accuracy_notes.py.
 """
 import math
-from pathlib import Path
 
 import matplotlib
 import numpy as np

@@ -23,8 +23,6 @@ Both are in the tables.
 import argparse
 import hashlib
 import json
-import math
-import os
 import re
 import resource
 import subprocess
@@ -33,7 +31,6 @@ import time
 from pathlib import Path
 
 import h5py
-import numpy as np
 
 import accuracy_report
 
