@@ -125,8 +125,10 @@ std::vector<ValueDecl> newtonParameters() {
                       "as stabilize_on_failure, with the factor chosen by the run: after every "
                       "step that converged without stabilisation, C is set so that a step like it "
                       "would dissipate this fraction of its work of the loads and supports, and a "
-                      "failing step is stabilised with the last such C; replaces the three "
-                      "above. 0: off")
+                      "failing step is stabilised with the last such C (before any such step, "
+                      "e.g. for a body that only contact holds: C = F E dt / L^2 from the "
+                      "stiffness, E and L = V^(1/3) of the element set with the smallest E / "
+                      "L^2); replaces the three above. 0: off")
               .withRange(Range::between(0, true, 1, false))
               .withDefault(defaultText(defaults.stabilizationOnFailureShare))};
 }

@@ -4,6 +4,8 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+
 #include "model/viscous_stabilization.hpp"
 
 namespace cc {
@@ -70,6 +72,12 @@ const std::vector<double>& ElementSet::referenceVolumes(
     volumes_ = std::move(volumes);
   });
   return volumes_;
+}
+
+double ElementSet::size(const Eigen::Matrix3Xd& referenceCoordinates) const {
+  double volume = 0;
+  for (double element : referenceVolumes(referenceCoordinates)) volume += std::abs(element);
+  return std::cbrt(volume);
 }
 
 LocalStatus ElementSet::evaluate(std::size_t item, const AssemblyState& state,

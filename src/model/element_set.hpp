@@ -56,6 +56,11 @@ class ElementSet : public Contribution {
   double viscousWork(const Eigen::Matrix3Xd& reference, const Eigen::Matrix3Xd& current,
                      const Eigen::Matrix3Xd& previous, double factorPerTime) const;
   int elementCount() const { return static_cast<int>(connectivity_.rows()); }
+  // The material's Young's modulus and the set's size V^(1/3), V its elements' reference volume:
+  // the scales of the set's stiffness as a whole (~ E L) and of its lumped volume (~ L^3), for a
+  // viscous factor chosen from the stiffness (Model::viscousFactorForStiffness).
+  double youngsModulus() const { return material_->youngsModulus(); }
+  double size(const Eigen::Matrix3Xd& referenceCoordinates) const;
 
  private:
   void gather(std::size_t item, const Eigen::Matrix3Xd& coordinates, Eigen::Matrix3Xd& nodes) const;

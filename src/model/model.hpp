@@ -40,6 +40,7 @@ class Model : public NonlinearProblem {
   void scalePenalties(double factor) override;
   double viscousFactorForShare(double share, double time, const Eigen::VectorXd& displacement,
                                const Eigen::VectorXd& internalForce) const override;
+  ViscousFactor viscousFactorForStiffness(double share, double dt) const override;
   void commitStep() override;
   void restoreStep() override;
   void rememberContactSearch() override;

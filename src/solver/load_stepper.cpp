@@ -175,6 +175,7 @@ bool LoadStepper::runPhase(const PhaseSpec& givenPhase, double phaseStart, Phase
   StepControl control;
   chosenViscousFactor_ = 0;
   measuredFailureStep_ = 0;
+  stiffnessFactorOrigin_.clear();
   double position = std::max(0.0, snapped((run.time - phaseStart) / phase.dt));
   if (resumeStepSize_ && position < phase.steps) {
     // A restart inside this phase continues with the stored step size, chosen factor and
@@ -227,7 +228,7 @@ bool LoadStepper::runPhase(const PhaseSpec& givenPhase, double phaseStart, Phase
       result = solveByPenaltyContinuation(attemptSpec(phase, control.stabilizing), retry, run);
     }
     if (result.status == NewtonResult::Status::Failed && !control.stabilizing &&
-        phase.newton.stabilizationOnFailure > 0 && !observer_.stopRequested()) {
+        !observer_.stopRequested() && failureFactorKnown(phase)) {
       result = solveStabilized(phase, step, result, (target - position) * phase.dt, solvedWith,
                                control, run);
     }
@@ -264,12 +265,13 @@ NewtonResult LoadStepper::solveStabilized(const PhaseSpec& phase, const NewtonSt
   ++summary_.stabilizedRetries;
   const double factor = phase.newton.stabilizationOnFailure;
   const double share = phase.newton.stabilizationOnFailureShare;
-  const std::string given =
-      share > 0
-          ? fmt::format("stabilize_on_failure_share={:g}: C = {:.4g} from {}", share, factor,
-                        measuredFailureStep_ > 0 ? fmt::format("step {}", measuredFailureStep_)
-                                                 : std::string("the restart data"))
-          : fmt::format("stabilize_on_failure={:g}", factor);
+  const std::string origin = measuredFailureStep_ > 0 ? fmt::format("step {}", measuredFailureStep_)
+                             : !stiffnessFactorOrigin_.empty() ? stiffnessFactorOrigin_
+                                                               : std::string("the restart data");
+  const std::string given = share > 0
+                                ? fmt::format("stabilize_on_failure_share={:g}: C = {:.4g} from {}",
+                                              share, factor, origin)
+                                : fmt::format("stabilize_on_failure={:g}", factor);
   const NewtonStep retry = retryStep(
       step, failed, dt, fmt::format("retrying the step with viscous stabilisation ({}): ", given),
       control, run);
@@ -316,6 +318,24 @@ void LoadStepper::measureFailureFactor(PhaseSpec& phase, double time, bool stabi
   if (factor == 0) return;
   newton.stabilizationOnFailure = chosenViscousFactor_ = factor;
   measuredFailureStep_ = run.step + 1;
+}
+
+// Whether a failing step has a stabilize_on_failure factor to be solved again with. With
+// stabilize_on_failure_share and no step yet converged without stabilisation to measure it from
+// (a body that only contact will hold fails the first step), the factor comes from the stiffness
+// (NonlinearProblem::viscousFactorForStiffness), at the phase's step size; the first step that
+// converges without stabilisation measures it anew.
+bool LoadStepper::failureFactorKnown(PhaseSpec& phase) {
+  NewtonSpec& newton = phase.newton;
+  if (newton.stabilizationOnFailure > 0) return true;
+  if (!(newton.stabilizationOnFailureShare > 0)) return false;
+  const NonlinearProblem::ViscousFactor chosen =
+      problem_.viscousFactorForStiffness(newton.stabilizationOnFailureShare, phase.dt);
+  if (!(chosen.factor > 0) || !std::isfinite(chosen.factor)) return false;
+  newton.stabilizationOnFailure = chosenViscousFactor_ = chosen.factor;
+  stiffnessFactorOrigin_ = chosen.origin + " at dt = " + fmt::format("{:g}", phase.dt) +
+                           ", no step having converged without it yet";
+  return true;
 }
 
 // A failed attempt that is retried on the same step (not cut back): its trial state is

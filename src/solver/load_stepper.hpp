@@ -115,6 +115,9 @@ class LoadStepper {
   // NewtonSpec::stabilizationOnFailureShare: sets the phase's stabilize_on_failure factor from
   // each step that converged without stabilisation.
   void measureFailureFactor(PhaseSpec& phase, double time, bool stabilizing, const PhaseRun& run);
+  // Whether a failed step can be solved again stabilised; sets the stabilize_on_failure_share
+  // factor from the stiffness when no step has measured it yet.
+  bool failureFactorKnown(PhaseSpec& phase);
   bool acceptStep(const PhaseSpec& phase, const NewtonResult& result, double time, bool phaseEnd,
                   StepControl& control, PhaseRun& run);
   std::string withFold(const std::string& message, const PhaseSpec& phase) const;
@@ -132,7 +135,8 @@ class LoadStepper {
   bool resumeStepSize_ = false;     // a restart's step size still waits for its phase
   double resumeViscousFactor_ = 0;  // a restart's chosen factor, for the same phase
   double chosenViscousFactor_ = 0;
-  int measuredFailureStep_ = 0;  // the step measureFailureFactor last measured
+  int measuredFailureStep_ = 0;        // the step measureFailureFactor last measured
+  std::string stiffnessFactorOrigin_;  // the failure factor from the stiffness: its origin
   std::pair<int, int> tangentCheck_{-1, -1};
   const PhaseRun* activeRun_ = nullptr;  // during run()
 };

@@ -513,7 +513,8 @@ std::optional<NewtonResult> Newton::solveCorrection(newton_detail::SolveState& s
     if (diagnosis.freeRigidMotion && s.spec.stabilization == 0) {
       missing +=
           "; if contact alone is to hold the body (or will, once it touches), viscous "
-          "stabilisation (newton stabilize=C) carries it";
+          "stabilisation carries it: newton stabilize_on_failure_share=0.01 stabilises the "
+          "steps that fail, with a factor the run chooses, newton stabilize=C every step";
     }
     return failed(iteration, failure.kind(), missing + " (" + failure.what() + ")");
   }

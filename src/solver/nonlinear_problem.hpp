@@ -61,6 +61,16 @@ class NonlinearProblem {
                                        const Eigen::VectorXd& /*internalForce*/) const {
     return 0;
   }
+  // NewtonSpec::stabilizationOnFailureShare before any step has converged without
+  // stabilisation (a body that only contact will hold fails the first one): the factor C from
+  // the stiffness alone, and where it comes from, for the log. factor 0: no solid elements.
+  struct ViscousFactor {
+    double factor = 0;
+    std::string origin;
+  };
+  virtual ViscousFactor viscousFactorForStiffness(double /*share*/, double /*dt*/) const {
+    return {};
+  }
   virtual void commitStep() = 0;   // the step converged: keep its history
   virtual void restoreStep() = 0;  // the step is cut back: forget the attempt
   // The contact search state (each point's master segment and parameter): remembered at an
