@@ -128,7 +128,8 @@ std::vector<ValueDecl> newtonParameters() {
                       "failing step is stabilised with the last such C (before any such step, "
                       "e.g. for a body that only contact holds: C = F E dt / L^2 from the "
                       "stiffness, E and L = V^(1/3) of the element set with the smallest E / "
-                      "L^2); replaces the three above. 0: off")
+                      "L^2, lowered by each stabilised step that dissipates more than F); "
+                      "replaces the three above. 0: off")
               .withRange(Range::between(0, true, 1, false))
               .withDefault(defaultText(defaults.stabilizationOnFailureShare))};
 }

@@ -310,12 +310,29 @@ void LoadStepper::chooseViscousFactor(PhaseSpec& phase, double time, const Phase
 // |dx_a|^2 makes a step like this one dissipate `share` of its work W, as for
 // stabilizationShare. The last quasi-static step before a fold measures the motion the
 // stabilisation is to resist there; stabilised steps keep the factor they are solved with.
+// A factor from the stiffness (failureFactorKnown) is only a scale, and too large for a body
+// whose stiffness as a whole lies far below E L (a thin strip in bending: its viscous forces then
+// hold it off the contact meant to carry it). So, until a step converges without stabilisation,
+// each stabilised step that dissipated more than `share` of its work lowers it to the factor that
+// step measures: C share / s for a step that dissipated s. Never raised: a free body's motion
+// dissipates all its work at any C.
 void LoadStepper::measureFailureFactor(PhaseSpec& phase, double time, bool stabilizing,
                                        const PhaseRun& run) {
   NewtonSpec& newton = phase.newton;
-  if (!(newton.stabilizationOnFailureShare > 0) || stabilizing) return;
+  if (!(newton.stabilizationOnFailureShare > 0)) return;
+  const bool fromStiffness = measuredFailureStep_ == 0 && !stiffnessFactorOrigin_.empty();
+  if (stabilizing && !fromStiffness) return;
   const double factor = factorForShare(newton.stabilizationOnFailureShare, time, run);
   if (factor == 0) return;
+  if (stabilizing) {
+    if (!(factor < newton.stabilizationOnFailure)) return;
+    newton.stabilizationOnFailure = chosenViscousFactor_ = factor;
+    stiffnessFactorOrigin_ = fmt::format(
+        "step {}, which dissipated more than that share with the "
+        "factor from the stiffness",
+        run.step + 1);
+    return;
+  }
   newton.stabilizationOnFailure = chosenViscousFactor_ = factor;
   measuredFailureStep_ = run.step + 1;
 }

@@ -113,7 +113,8 @@ class LoadStepper {
   // NewtonSpec::stabilizationShare: sets the phase's factor from its first converged step.
   void chooseViscousFactor(PhaseSpec& phase, double time, const PhaseRun& run);
   // NewtonSpec::stabilizationOnFailureShare: sets the phase's stabilize_on_failure factor from
-  // each step that converged without stabilisation.
+  // each step that converged without stabilisation, and lowers a factor from the stiffness after
+  // a stabilised step that dissipated more than the share.
   void measureFailureFactor(PhaseSpec& phase, double time, bool stabilizing, const PhaseRun& run);
   // Whether a failed step can be solved again stabilised; sets the stabilize_on_failure_share
   // factor from the stiffness when no step has measured it yet.
