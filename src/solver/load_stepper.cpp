@@ -326,6 +326,11 @@ void LoadStepper::measureFailureFactor(PhaseSpec& phase, double time, bool stabi
   if (factor == 0) return;
   if (stabilizing) {
     if (!(factor < newton.stabilizationOnFailure)) return;
+    observer_.note(fmt::format(
+        "viscous stabilisation: factor lowered from C = {:.4g} to {:.4g} from step {} on (step {}, "
+        "t = {:.6g}, dissipated {:.3g} times the share {:g} of its work)",
+        newton.stabilizationOnFailure, factor, run.step + 2, run.step + 1, time,
+        newton.stabilizationOnFailure / factor, newton.stabilizationOnFailureShare));
     newton.stabilizationOnFailure = chosenViscousFactor_ = factor;
     stiffnessFactorOrigin_ = fmt::format(
         "step {}, which dissipated more than that share with the "
