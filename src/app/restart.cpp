@@ -29,6 +29,7 @@ StartState restartFrom(const std::string& file, int fromStep, Model& model) {
   start.lastIncrement = std::move(point.record.lastIncrement);
   start.lastDt = point.record.lastDt;
   start.viscousFactor = point.record.viscousFactor;
+  start.viscousFactorFromStiffness = point.record.viscousFactorFromStiffness;
   model.startEnergyAccount(start.time, start.displacement);
   return start;
 }
@@ -44,6 +45,7 @@ RestartRecord restartRecordOf(const Model& model, const Eigen::VectorXd& displac
   record.stepFraction = nextStepSize.fraction;
   record.easySteps = nextStepSize.easySteps;
   record.viscousFactor = stepper.chosenViscousFactor();
+  record.viscousFactorFromStiffness = stepper.chosenFactorFromStiffness();
   record.stabilizing = nextStepSize.stabilizing;
   record.stabilizedEasySteps = nextStepSize.stabilizedEasySteps;
   return record;

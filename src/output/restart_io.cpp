@@ -45,6 +45,9 @@ void writeRestart(h5::FileRef file, hid_t stepGroup, const RestartRecord& restar
   if (restart.viscousFactor > 0) {
     h5::writeAttribute(file, group.get(), "viscous_factor", restart.viscousFactor);
   }
+  if (restart.viscousFactorFromStiffness) {
+    h5::writeAttribute(file, group.get(), "viscous_factor_from_stiffness", 1);
+  }
   if (restart.stabilizing) {
     h5::writeAttribute(file, group.get(), "stabilized_easy_steps", restart.stabilizedEasySteps);
   }
@@ -108,6 +111,7 @@ RestartPoint readRestart(const std::string& path, int step) {
   if (reader.hasAttribute(group, "viscous_factor")) {
     record.viscousFactor = reader.numberAttribute(group, "viscous_factor");
   }
+  record.viscousFactorFromStiffness = reader.hasAttribute(group, "viscous_factor_from_stiffness");
   // Written only while a run stabilises on failure (files without it: not stabilising).
   if (reader.hasAttribute(group, "stabilized_easy_steps")) {
     record.stabilizing = true;

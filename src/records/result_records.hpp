@@ -86,6 +86,9 @@ struct RestartRecord {
   // The viscous stabilisation factor the phase chose (NewtonSpec::stabilizationShare; 0: none
   // chosen), so that a restart inside the phase goes on with it rather than choosing anew.
   double viscousFactor = 0;
+  // Whether that factor came from the stiffness (NewtonSpec::stabilizationOnFailureShare before
+  // any quasi-static step), which the next stabilised steps may still lower.
+  bool viscousFactorFromStiffness = false;
   // NewtonSpec::stabilizationOnFailure: whether the next step starts stabilised, and the easy
   // steps counted towards leaving the stabilisation, so that a restart goes on as the run would.
   bool stabilizing = false;

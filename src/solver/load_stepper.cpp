@@ -160,6 +160,7 @@ RunSummary LoadStepper::run(const StartState& start) {
   nextStepSize_ = start.stepSize;
   resumeStepSize_ = start.step > 0;
   resumeViscousFactor_ = start.viscousFactor;
+  resumeFactorFromStiffness_ = start.viscousFactorFromStiffness;
   summary_.finalTime = start.time;
   double phaseStart = 0;
   for (const PhaseSpec& phase : phases_) {
@@ -185,6 +186,7 @@ bool LoadStepper::runPhase(const PhaseSpec& givenPhase, double phaseStart, Phase
       StepSize resumed = nextStepSize_;
       if (phase.newton.stabilizationOnFailureShare > 0 && resumeViscousFactor_ > 0) {
         phase.newton.stabilizationOnFailure = chosenViscousFactor_ = resumeViscousFactor_;
+        if (resumeFactorFromStiffness_) stiffnessFactorOrigin_ = "the stiffness (restart data)";
       }
       // A deck changed for the restart may have dropped stabilize_on_failure from the phase.
       if (!(phase.newton.stabilizationOnFailure > 0)) {
@@ -320,8 +322,7 @@ void LoadStepper::measureFailureFactor(PhaseSpec& phase, double time, bool stabi
                                        const PhaseRun& run) {
   NewtonSpec& newton = phase.newton;
   if (!(newton.stabilizationOnFailureShare > 0)) return;
-  const bool fromStiffness = measuredFailureStep_ == 0 && !stiffnessFactorOrigin_.empty();
-  if (stabilizing && !fromStiffness) return;
+  if (stabilizing && !chosenFactorFromStiffness()) return;
   const double factor = factorForShare(newton.stabilizationOnFailureShare, time, run);
   if (factor == 0) return;
   if (stabilizing) {

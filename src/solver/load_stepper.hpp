@@ -61,6 +61,7 @@ struct StartState {
   double lastDt = 0;
   // The factor the phase started from chose (NewtonSpec::stabilizationShare; 0: none yet).
   double viscousFactor = 0;
+  bool viscousFactorFromStiffness = false;  // and whether it came from the stiffness
 };
 
 class LoadStepper {
@@ -82,6 +83,11 @@ class LoadStepper {
   // chose for the steps after it (NewtonSpec::stabilizationShare; with
   // stabilizationOnFailureShare, the factor for the next failing step; 0: none chosen).
   double chosenViscousFactor() const { return chosenViscousFactor_; }
+  // Whether that factor came from the stiffness and stabilised steps may still lower it
+  // (stabilize_on_failure_share before any step converged without stabilisation).
+  bool chosenFactorFromStiffness() const {
+    return measuredFailureStep_ == 0 && !stiffnessFactorOrigin_.empty();
+  }
   // Diagnostics: see Newton::setTangentCheck.
   void setTangentCheck(int step, int iteration) { tangentCheck_ = {step, iteration}; }
 
@@ -133,8 +139,9 @@ class LoadStepper {
   std::unique_ptr<Newton> newton_;
   RunSummary summary_;
   StepSize nextStepSize_;
-  bool resumeStepSize_ = false;     // a restart's step size still waits for its phase
-  double resumeViscousFactor_ = 0;  // a restart's chosen factor, for the same phase
+  bool resumeStepSize_ = false;             // a restart's step size still waits for its phase
+  double resumeViscousFactor_ = 0;          // a restart's chosen factor, for the same phase
+  bool resumeFactorFromStiffness_ = false;  // and whether it came from the stiffness
   double chosenViscousFactor_ = 0;
   int measuredFailureStep_ = 0;        // the step measureFailureFactor last measured
   std::string stiffnessFactorOrigin_;  // the failure factor from the stiffness: its origin

@@ -184,15 +184,71 @@ struct FactorObserver : RecordingObserver {
   }
 };
 
-// A linear chain whose steps ending in (2, 3] fail unless stabilised (a fold that stabilisation
-// carries).
-MeasuringChain foldingChain() {
-  MeasuringChain chain(3, SpringLaw::linear(1.0), [](double t) { return 0.1 * t; });
+// A linear chain whose steps ending in (from, until] fail unless stabilised (a fold that
+// stabilisation carries).
+template <typename Chain>
+Chain foldingChainOf(double from, double until) {
+  Chain chain(3, SpringLaw::linear(1.0), [](double t) { return 0.1 * t; });
   chain.items().failThreshold = 0.0;
-  chain.items().failFrom = 2.0;
-  chain.items().failUntil = 3.0;
+  chain.items().failFrom = from;
+  chain.items().failUntil = until;
   chain.items().failsOnlyUnstabilized = true;
   return chain;
+}
+
+MeasuringChain foldingChain() {
+  return foldingChainOf<MeasuringChain>(2.0, 3.0);
+}
+
+// The phase of the tests below: `steps` unit steps with stabilize_on_failure_share = 0.1.
+PhaseSpec sharePhase(int steps) {
+  PhaseSpec spec = phase(steps, 1.0);
+  spec.newton.stabilizationOnFailureShare = 0.1;
+  return spec;
+}
+
+// Runs `chain` over sharePhase(steps), recording the factor each step was solved with; returns
+// the summary and the factor chosen at the end.
+std::pair<RunSummary, double> runWithShare(MeasuringChain& chain, FactorObserver& observer,
+                                           int steps) {
+  observer.chain = &chain;
+  LoadStepper stepper(chain, observer, {sharePhase(steps)});
+  const RunSummary summary = stepper.run();
+  return {summary, stepper.chosenViscousFactor()};
+}
+
+// What step `restartStep` of a run leaves for a restart, as the results writer stores it, and
+// the factor chosen after every step.
+struct RestartPointObserver : RecordingObserver {
+  const LoadStepper* stepper = nullptr;
+  int restartStep = 0;
+  StartState start;
+  std::vector<double> chosen;
+  void stepConverged(int step, double time, int iterations, int cutbacks,
+                     const Eigen::VectorXd& displacement, const Eigen::VectorXd& internalForce,
+                     bool writeOutput) override {
+    if (step == restartStep) {
+      start.step = step;
+      start.time = time;
+      start.displacement = displacement;
+      start.stepSize = stepper->nextStepSize();
+      start.viscousFactor = stepper->chosenViscousFactor();
+      start.viscousFactorFromStiffness = stepper->chosenFactorFromStiffness();
+    }
+    chosen.push_back(stepper->chosenViscousFactor());
+    RecordingObserver::stepConverged(step, time, iterations, cutbacks, displacement, internalForce,
+                                     writeOutput);
+  }
+};
+
+// Runs `chain` over sharePhase(steps) into `observer`, which keeps what step `restartStep`
+// leaves for a restart.
+RunSummary runRecordingRestartPoint(MeasuringChain& chain, RestartPointObserver& observer,
+                                    int steps, int restartStep) {
+  LoadStepper stepper(chain, observer, {sharePhase(steps)});
+  observer.stepper = &stepper;
+  observer.restartStep = restartStep;
+  return stepper.run();
 }
 
 // stabilize_on_failure_share=F: after every step that converged without stabilisation the
@@ -203,11 +259,7 @@ MeasuringChain foldingChain() {
 TEST(LoadStepper, AFailingStepIsStabilizedWithTheFactorOfTheLastQuasiStaticStep) {
   MeasuringChain chain = foldingChain();
   FactorObserver observer;
-  observer.chain = &chain;
-  PhaseSpec spec = phase(5, 1.0);
-  spec.newton.stabilizationOnFailureShare = 0.1;
-  LoadStepper stepper(chain, observer, {spec});
-  const RunSummary summary = stepper.run();
+  const auto [summary, chosen] = runWithShare(chain, observer, 5);
   ASSERT_EQ(summary.outcome, RunSummary::Outcome::Completed) << summary.message;
   EXPECT_EQ(convergedTimes(observer), (std::vector<double>{1, 2, 3, 4, 5}));
   EXPECT_EQ(summary.stabilizedRetries, 1);
@@ -218,53 +270,34 @@ TEST(LoadStepper, AFailingStepIsStabilizedWithTheFactorOfTheLastQuasiStaticStep)
             std::string::npos)
       << observer.cutbacks[0].reason;
   EXPECT_EQ(observer.factors, (std::vector<double>{0, 0, 0.1 * 12, 0.1 * 12, 0}));
-  EXPECT_EQ(stepper.chosenViscousFactor(), 0.1 * 15);  // measured at step 5
+  EXPECT_EQ(chosen, 0.1 * 15);  // measured at step 5
 }
 
 // A restart inside the stabilised stretch goes on stabilised, with the factor of the run it
 // continues (StartState::viscousFactor, from the results file's restart data): step 4 of the
 // run above again with 0.1 x 12, step 5 without.
 TEST(LoadStepper, ARestartGoesOnWithTheMeasuredFailureFactor) {
-  PhaseSpec spec = phase(5, 1.0);
-  spec.newton.stabilizationOnFailureShare = 0.1;
-  // What the full run's step 3 leaves for a restart, as the results writer stores it.
-  struct RestartObserver : RecordingObserver {
-    const LoadStepper* stepper = nullptr;
-    StartState atStep3;
-    void stepConverged(int step, double time, int iterations, int cutbacks,
-                       const Eigen::VectorXd& displacement, const Eigen::VectorXd& internalForce,
-                       bool writeOutput) override {
-      if (step == 3) {
-        atStep3.step = step;
-        atStep3.time = time;
-        atStep3.displacement = displacement;
-        atStep3.stepSize = stepper->nextStepSize();
-        atStep3.viscousFactor = stepper->chosenViscousFactor();
-      }
-      RecordingObserver::stepConverged(step, time, iterations, cutbacks, displacement,
-                                       internalForce, writeOutput);
-    }
-  } full;
+  RestartPointObserver full;
   MeasuringChain fullChain = foldingChain();
-  LoadStepper fullStepper(fullChain, full, {spec});
-  full.stepper = &fullStepper;
-  ASSERT_EQ(fullStepper.run().outcome, RunSummary::Outcome::Completed);
-  ASSERT_TRUE(full.atStep3.stepSize.stabilizing);
-  EXPECT_EQ(full.atStep3.viscousFactor, 0.1 * 12);
+  ASSERT_EQ(runRecordingRestartPoint(fullChain, full, 5, 3).outcome,
+            RunSummary::Outcome::Completed);
+  ASSERT_TRUE(full.start.stepSize.stabilizing);
+  EXPECT_EQ(full.start.viscousFactor, 0.1 * 12);
 
   MeasuringChain chain = foldingChain();
   FactorObserver observer;
   observer.chain = &chain;
-  LoadStepper stepper(chain, observer, {spec});
-  const RunSummary summary = stepper.run(full.atStep3);
+  LoadStepper stepper(chain, observer, {sharePhase(5)});
+  const RunSummary summary = stepper.run(full.start);
   ASSERT_EQ(summary.outcome, RunSummary::Outcome::Completed) << summary.message;
   EXPECT_EQ(convergedTimes(observer), (std::vector<double>{4, 5}));
   EXPECT_EQ(observer.factors, (std::vector<double>{0.1 * 12, 0}));
 }
 
-// Before any step has converged without stabilisation there is no factor: a first step that
-// fails is cut back as without the share.
-TEST(LoadStepper, WithoutAQuasiStaticStepYetAShareDoesNotStabilize) {
+// Before any step has converged without stabilisation, a problem without a stiffness scale
+// (NonlinearProblem::viscousFactorForStiffness answers 0) has no factor: a first step that fails
+// is cut back as without the share.
+TEST(LoadStepper, WithoutAQuasiStaticStepOrAStiffnessAShareDoesNotStabilize) {
   MeasuringChain chain(3, SpringLaw::linear(1.0), [](double t) { return 0.1 * t; });
   chain.items().failThreshold = 0.6;
   chain.items().failsOnlyUnstabilized = true;
@@ -277,6 +310,67 @@ TEST(LoadStepper, WithoutAQuasiStaticStepYetAShareDoesNotStabilize) {
   EXPECT_EQ(summary.stabilizedRetries, 0);
   EXPECT_EQ(summary.totalCutbacks, 1);
   EXPECT_EQ(convergedTimes(observer), (std::vector<double>{0.5, 1.0}));
+}
+
+// The folding chain whose problem also has a stiffness scale (factor share x 100) and whose
+// steps measure share (20 - t), falling with t, so that each stabilised step would lower a
+// factor from the stiffness. Its steps ending in (0, 2] fail unless stabilised.
+struct StiffChain : MeasuringChain {
+  using MeasuringChain::MeasuringChain;
+  double viscousFactorForShare(double share, double time, const Eigen::VectorXd&,
+                               const Eigen::VectorXd&) const override {
+    return share * (20 - time);
+  }
+  ViscousFactor viscousFactorForStiffness(double share, double) const override {
+    return {share * 100, "the stiffness of 'chain'"};
+  }
+};
+
+StiffChain stiffFoldingChain() {
+  return foldingChainOf<StiffChain>(0.0, 2.0);
+}
+
+// With no step to measure from, step 1 is retried with the factor from the stiffness (10); each
+// stabilised step then lowers it to what it measures (step 1: 0.1 x 19, step 2: 0.1 x 18);
+// step 3, past grow_after = 2 easy stabilised steps, converges without stabilisation and
+// measures anew (0.1 x 17), step 4 too (0.1 x 16), and a quasi-static measurement is never
+// lowered by the stabilised steps' rule.
+TEST(LoadStepper, AFactorFromTheStiffnessIsLoweredByTheStabilizedSteps) {
+  StiffChain chain = stiffFoldingChain();
+  FactorObserver observer;
+  const auto [summary, chosen] = runWithShare(chain, observer, 4);
+  ASSERT_EQ(summary.outcome, RunSummary::Outcome::Completed) << summary.message;
+  EXPECT_EQ(summary.stabilizedRetries, 1);
+  ASSERT_EQ(observer.cutbacks.size(), 1u);
+  EXPECT_NE(observer.cutbacks[0].reason.find(
+                "(stabilize_on_failure_share=0.1: C = 10 from the stiffness of 'chain' at dt = 1, "
+                "no step having converged without it yet)"),
+            std::string::npos)
+      << observer.cutbacks[0].reason;
+  EXPECT_EQ(observer.factors, (std::vector<double>{0.1 * 100, 0.1 * 19, 0, 0}));
+  EXPECT_DOUBLE_EQ(chosen, 0.1 * 16);
+}
+
+// Continued from step 1, the run goes on lowering the factor from the stiffness as the full run
+// does (StartState::viscousFactorFromStiffness): step 2 is solved with 0.1 x 19 and lowers it to
+// 0.1 x 18. Without the flag the restarted run would keep 0.1 x 19 for the next failing step.
+TEST(LoadStepper, ARestartGoesOnLoweringAFactorFromTheStiffness) {
+  RestartPointObserver full;
+  StiffChain fullChain = stiffFoldingChain();
+  ASSERT_EQ(runRecordingRestartPoint(fullChain, full, 4, 1).outcome,
+            RunSummary::Outcome::Completed);
+  ASSERT_TRUE(full.start.stepSize.stabilizing);
+  ASSERT_TRUE(full.start.viscousFactorFromStiffness);
+  ASSERT_EQ(full.chosen.size(), 4u);
+  EXPECT_DOUBLE_EQ(full.chosen[1], 0.1 * 18);
+
+  RestartPointObserver continued;
+  StiffChain chain = stiffFoldingChain();
+  LoadStepper stepper(chain, continued, {sharePhase(4)});
+  continued.stepper = &stepper;
+  ASSERT_EQ(stepper.run(full.start).outcome, RunSummary::Outcome::Completed);
+  EXPECT_EQ(convergedTimes(continued), (std::vector<double>{2, 3, 4}));
+  EXPECT_EQ(continued.chosen, (std::vector<double>(full.chosen.begin() + 1, full.chosen.end())));
 }
 
 TEST(LoadStepper, UnsupportedChainStopsAsSingular) {
