@@ -507,8 +507,9 @@ std::optional<NewtonResult> Newton::solveCorrection(newton_detail::SolveState& s
     }
     orientation_.noteSign(iteration, 0);  // singular: on the fold itself, if it is one
     // Name what is missing (a support, a contact) rather than only the pivot that showed it.
-    SingularStiffnessDiagnosis diagnosis =
-        describeSingularStiffness(tangent_.free, dofs, current_, problem_.bodies());
+    SingularStiffnessDiagnosis diagnosis = describeSingularStiffness(
+        tangent_.free, dofs, current_, problem_.bodies(),
+        [this](Eigen::VectorXd& values) { problem_.sumOverProcesses(values); });
     std::string& missing = diagnosis.message;
     if (diagnosis.freeRigidMotion && s.spec.stabilization == 0) {
       missing +=

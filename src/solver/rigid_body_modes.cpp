@@ -38,12 +38,11 @@ Eigen::VectorXd freeMotion(RigidMotion motion, const BodyNodes& body, const DofM
   return r;
 }
 
-double largestColumnNorm(const SparseMatrix& matrix) {
-  double largest = 0;
-  for (Eigen::Index column = 0; column < matrix.outerSize(); ++column) {
-    largest = std::max(largest, matrix.col(column).norm());
-  }
-  return largest;
+// The largest diagonal entry of the whole matrix (summed over the processes' shares).
+double largestDiagonal(const SparseMatrix& matrix, const SumOverProcesses& sum) {
+  Eigen::VectorXd diagonal = matrix.diagonal();
+  if (sum) sum(diagonal);
+  return diagonal.size() ? diagonal.cwiseAbs().maxCoeff() : 0.0;
 }
 
 std::vector<BodyNodes> allNodesAsOneBody(const DofMap& dofs) {
@@ -63,9 +62,10 @@ std::string describe(RigidMotion motion) {
 std::vector<RigidMotionRestraint> rigidMotionRestraints(const SparseMatrix& freeStiffness,
                                                         const DofMap& dofs,
                                                         const Eigen::Matrix3Xd& coordinates,
-                                                        const std::vector<BodyNodes>& givenBodies) {
+                                                        const std::vector<BodyNodes>& givenBodies,
+                                                        const SumOverProcesses& sum) {
   const std::vector<BodyNodes> bodies = givenBodies.empty() ? allNodesAsOneBody(dofs) : givenBodies;
-  const double scale = largestColumnNorm(freeStiffness);
+  const double scale = largestDiagonal(freeStiffness, sum);
   std::vector<RigidMotionRestraint> restraints;
   if (!(scale > 0)) return restraints;
   for (std::size_t b = 0; b < bodies.size(); ++b) {
@@ -77,7 +77,9 @@ std::vector<RigidMotionRestraint> rigidMotionRestraints(const SparseMatrix& free
       const Eigen::VectorXd r = freeMotion(motion, bodies[b], dofs, coordinates, centroid);
       const double length = r.norm();
       if (!(length > 0)) continue;  // every dof it moves is prescribed: held by the supports
-      const double ratio = (freeStiffness * r).norm() / (length * scale);
+      Eigen::VectorXd restoring = freeStiffness * r;
+      if (sum) sum(restoring);
+      const double ratio = restoring.norm() / (length * scale);
       restraints.push_back({static_cast<int>(b), motion, ratio});
     }
   }
@@ -87,10 +89,11 @@ std::vector<RigidMotionRestraint> rigidMotionRestraints(const SparseMatrix& free
 SingularStiffnessDiagnosis describeSingularStiffness(const SparseMatrix& freeStiffness,
                                                      const DofMap& dofs,
                                                      const Eigen::Matrix3Xd& coordinates,
-                                                     const std::vector<BodyNodes>& givenBodies) {
+                                                     const std::vector<BodyNodes>& givenBodies,
+                                                     const SumOverProcesses& sum) {
   const std::vector<BodyNodes> bodies = givenBodies.empty() ? allNodesAsOneBody(dofs) : givenBodies;
   const std::vector<RigidMotionRestraint> restraints =
-      rigidMotionRestraints(freeStiffness, dofs, coordinates, bodies);
+      rigidMotionRestraints(freeStiffness, dofs, coordinates, bodies, sum);
   std::vector<std::string> perBody;
   int count = 0;
   for (std::size_t b = 0; b < bodies.size(); ++b) {

@@ -49,7 +49,8 @@
   the reason named), where the second miss used to leave it as an internal error.
 --case errors: `check` on 2 processes prints the serial output once; a deck error on 2
   processes exits with the serial exit code and is reported once; a persistent inverted element (input/stress/inverted_element_persistent.deck) exits
-  with the serial code, keeps the same converged steps and names the element once; SIGKILL of
+  with the serial code, keeps the same converged steps and names the element once; a singular
+  tangent (the thin strip loaded before it touches) is diagnosed as serially; SIGKILL of
   one process ends every process (no hang) and leaves every reported step readable.
 
 Usage: check_mpi_runs.py --covcontact BIN --mpirun MPIRUN --source DIR --scratch DIR --case C
@@ -619,6 +620,32 @@ def errors_case(args):
     check(len(final) == 1 and (two.stdout + two.stderr).count(final[0]) == 1,
           f"the failure is not reported once:\n{two.stderr}")
     print(f"inverted element: exit {two.returncode} as serial, same kept steps, reported once")
+
+    # The thin strip loaded at its end before it touches the cylinder (the variant of
+    # SingularSystem.ThinStrip*): a singular tangent, whose diagnosis applies the rigid-body
+    # motions to the tangent. Each process holds a share of it; the products are summed over
+    # the processes, so 2 processes name the serial run's free motion. Before, each process
+    # judged its own share, and the run named a translation along x and a rotation about y too,
+    # which the strip's symmetry support holds.
+    source = os.path.join(args.source, "input/stress")
+    with open(os.path.join(source, "thin_shell_on_cylinder.deck")) as f:
+        strip = f.read()
+    strip = strip.replace('mesh "thin_strip.geo"',
+                          f'mesh "{os.path.join(source, "thin_strip.geo")}"', 1)
+    strip = strip.replace("fix end_bottom uz", 'load end fz "-t" total', 1)
+    strip = strip.replace(' uz "t"', "", 1)
+    deck = os.path.join(args.scratch, "strip_singular.deck")
+    with open(deck, "w") as f:
+        f.write(strip)
+    serial = run(args, 1, "run", deck, "-o", "strip1.h5")
+    two = run(args, 2, "run", deck, "-o", "strip2.h5")
+    free = "unconstrained rigid-body motion: translation along z of body 'strip';"
+    check(serial.returncode == 7 and two.returncode == serial.returncode,
+          f"singular strip: exit {two.returncode} on 2 processes, {serial.returncode} serial")
+    check(free in serial.stderr and free in two.stderr,
+          f"singular strip: the diagnosis differs\nserial: {serial.stderr[-1500:]}\n"
+          f"2 processes: {two.stderr[-1500:]}")
+    print(f"singular strip: exit 7 on 1 and 2 processes, both naming only the free motion: {free}")
 
     deck = os.path.join(args.source, "input/stress/restart_6_1.deck")
     killed = os.path.join(args.scratch, "killed.h5")
