@@ -334,8 +334,7 @@ void LoadStepper::measureFailureFactor(PhaseSpec& phase, double time, bool stabi
         newton.stabilizationOnFailure / factor, newton.stabilizationOnFailureShare));
     newton.stabilizationOnFailure = chosenViscousFactor_ = factor;
     stiffnessFactorOrigin_ = fmt::format(
-        "step {}, which dissipated more than that share with the "
-        "factor from the stiffness",
+        "step {}, which dissipated more than that share with the factor from the stiffness",
         run.step + 1);
     return;
   }
