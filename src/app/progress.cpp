@@ -26,11 +26,11 @@ void printOut(const std::string& text) {
                   std::strerror(errno)));
 }
 
-Progress::Progress(double endTime, bool quiet, bool newtonLog)
+Progress::Progress(double endTime, bool quiet, bool newtonLog, bool liveLineAllowed)
     : endTime_(endTime),
       quiet_(quiet),
       newtonLog_(newtonLog),
-      terminal_(isatty(fileno(stdout)) != 0) {}
+      terminal_(liveLineAllowed && isatty(fileno(stdout)) != 0) {}
 
 void Progress::printLive(const std::string& text) {
   printOut(fmt::format("\r{:<79}", text));

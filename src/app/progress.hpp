@@ -20,7 +20,11 @@ class Progress {
  public:
   // endTime: where the last phase ends. Progress is shown as time of it, not as a step count:
   // cut-backs add steps (the plan's "step 6/5" read as a miscount).
-  Progress(double endTime, bool quiet, bool newtonLog = false);
+  // liveLineAllowed: false on several processes. Open MPI gives every rank a pseudo-terminal for
+  // its standard output, also when mpirun's own output goes to a file, so the ranks cannot tell
+  // a terminal from a log: `mpirun ... > log` then held carriage returns and step lines run
+  // together. A parallel run is a batch run; it writes plain lines.
+  Progress(double endTime, bool quiet, bool newtonLog = false, bool liveLineAllowed = true);
   void iteration(const IterationRecord& record);
   // The step's final |R|/|R0| for the next stepConverged line (the load stepper reports it
   // just before every converged step).

@@ -479,7 +479,7 @@ int runCommand(const RunOptions& options) {
       return code;
     }
   }
-  Progress progress(endTime(spec), quiet, options.newtonLog && writes);
+  Progress progress(endTime(spec), quiet, options.newtonLog && writes, group.size() == 1);
   RunObserver observer(*model, writer, writes, progress, selection.stress, group,
                        writes ? references.get() : nullptr);
   stopAfterIteration();

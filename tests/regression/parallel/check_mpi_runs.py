@@ -94,8 +94,15 @@ def run(args, processes, *words, env=None):
                           capture_output=True, text=True, timeout=TIMEOUT_S, env=env)
 
 
-def run_ok(args, processes, *words):
-    result = run(args, processes, *words)
+def run_ok(args, processes, *words, raw=False):
+    """`run`, which must succeed. raw: standard output and error as the bytes the run wrote,
+    decoded without translating newlines (text mode reads a carriage return as a line end)."""
+    if raw:
+        result = subprocess.run(covcontact(args, processes, *words), cwd=args.scratch,
+                                capture_output=True, timeout=TIMEOUT_S)
+        result.stdout, result.stderr = result.stdout.decode(), result.stderr.decode()
+    else:
+        result = run(args, processes, *words)
     check(result.returncode == EXIT["ok"],
           f"{' '.join(result.args)}: exit {result.returncode}\n{result.stdout}\n{result.stderr}")
     return result
@@ -191,7 +198,7 @@ def crossing_case(args):
     serial = os.path.join(args.scratch, "serial.h5")
     distributed = os.path.join(args.scratch, "two.h5")
     serial_run = run_ok(args, 1, "run", deck, "-o", serial, "--newton-log")
-    result = run_ok(args, 2, "run", deck, "-o", distributed, "--newton-log")
+    result = run_ok(args, 2, "run", deck, "-o", distributed, "--newton-log", raw=True)
     count, worst = compare_steps(serial, distributed)
     # Each process evaluates only its own contact points in the iterations: the per-iteration
     # counts of points in contact and of state and segment changes are summed over processes
@@ -217,6 +224,14 @@ def crossing_case(args):
           f"only {len(common)} iterations with a sign in both runs, or none negative")
     differ = [k for k in common if serial_signs[k] != distributed_signs[k]]
     check(not differ, f"determinant signs differ at (step, attempt, iteration) {differ}")
+    # Open MPI gives each rank a pseudo-terminal for its output even when mpirun's goes to a
+    # pipe or a file: the run must still print plain lines, one per converged step, as serially
+    # (a live line's carriage returns ran the step lines of `mpirun ... > log` together; the
+    # output is read raw, since text mode would turn them into line ends).
+    check("\r" not in result.stdout, "2 processes printed carriage returns (a live line)")
+    check(progress_lines.converged_steps(result.stdout)
+          == progress_lines.converged_steps(serial_run.stdout),
+          f"converged-step lines differ from the serial run's:\n{result.stdout[:2000]}")
     same_layout(serial, distributed)
     compare_energy(serial, distributed)
     moved = [line for line in result.stdout.splitlines()
