@@ -42,8 +42,8 @@ class ElementKernel {
                                 std::span<const double> history) const = 0;
 
   // Stored strain energy of the element, integral of W(E) over the reference volume, for the
-  // energy balance of a run. NaN where not implemented (the solid-shells: their enhanced
-  // strains would have to enter W).
+  // energy balance of a run (the solid-shells: at their assumed and enhanced strains). NaN where
+  // not implemented or where the material has no stored energy.
   virtual double strainEnergy(const Eigen::Matrix3Xd& /*X*/, const Eigen::Matrix3Xd& /*x*/,
                               const Material& /*material*/,
                               std::span<const double> /*history*/) const {

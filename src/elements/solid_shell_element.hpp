@@ -62,6 +62,12 @@ class SolidShellElement final : public ElementKernel {
     return kernel_.cauchyStress(X, x, material, warmStart(history));
   }
 
+  double strainEnergy(const Eigen::Matrix3Xd& X, const Eigen::Matrix3Xd& x,
+                      const Material& material, std::span<const double> history) const override {
+    requireNodeCount(X, x);
+    return kernel_.strainEnergy(X, x, material, warmStart(history));
+  }
+
  private:
   // Wrong sizes are programming errors of the caller, not user input problems.
   void requireNodeCount(const Eigen::Matrix3Xd& X, const Eigen::Matrix3Xd& x) const {

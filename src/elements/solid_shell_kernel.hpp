@@ -93,6 +93,25 @@ class AssumedStrainKernel {
     return voigtFromStress(kirchhoffIntegral / currentVolume);
   }
 
+  // Stored energy, the sum of W(E_compatible + E_enhanced) w det J over the Gauss points, with
+  // the enhanced strains in equilibrium with x (solved from alpha, as for the stresses): its
+  // gradient in x is then the internal force. NaN if the element cannot be evaluated.
+  double strainEnergy(const Nodes& X, const Nodes& x, const Material& material,
+                      EasVector alpha) const {
+    const double failed = std::numeric_limits<double>::quiet_NaN();
+    State& state = workspace();
+    EasSystem system;
+    if (!kinematics(X, x, state).ok()) return failed;
+    if (!solveEnhancedStrains(state.eas, material, alpha, system).ok()) return failed;
+    double energy = 0.0;
+    for (const EasGaussPoint& point : state.eas) {
+      Vector6d strain = point.compatibleStrain;
+      if (alpha.size() > 0) strain.noalias() += point.enhancement * alpha;
+      energy += point.volume * material.strainEnergy(strain);
+    }
+    return energy;
+  }
+
  private:
   // Everything the Gauss loop needs. The Hex18 arrays are large (~300 kB), so each thread keeps
   // one State per element type instead of allocating (and page-faulting) it on every call.

@@ -7,6 +7,7 @@
 //   D = 2 dS/dC (derivation in the comments of evaluate()).
 #include <Eigen/LU>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <stdexcept>
 
@@ -63,6 +64,15 @@ class NeoHookeDecoupled final : public Material {
       }
     }
     return true;
+  }
+
+  // W = C10 (J^(-2/3) I1 - 3) + (J - 1)^2 / D1 (the law this file implements).
+  double strainEnergy(const Vector6d& strainVoigt) const override {
+    const Eigen::Matrix3d C = Eigen::Matrix3d::Identity() + 2.0 * strainFromVoigt(strainVoigt);
+    const double detC = C.determinant();
+    if (!(detC > 0.0)) return std::numeric_limits<double>::quiet_NaN();
+    const double J = std::sqrt(detC);
+    return c10_ * (std::pow(J, -2.0 / 3.0) * C.trace() - 3.0) + (J - 1.0) * (J - 1.0) / d1_;
   }
 
   double youngsModulus() const override { return youngsModulus_; }

@@ -100,6 +100,35 @@ TEST_P(SolidShellKernelTest, TangentMatchesCentralDifferencesAfterLargeRotation)
   std::cout << "[ measured ] strain + 120 deg rotation |K_fd - K|/|K| = " << error << '\n';
 }
 
+// The stored energy at the enhanced strains in equilibrium with x: its gradient, by central
+// differences, is the internal force (dPi/dalpha = 0 removes the parameters' change), and it
+// is invariant under a rigid motion.
+TEST_P(SolidShellKernelTest, InternalForceIsTheGradientOfTheStrainEnergy) {
+  const Eigen::Matrix3Xd x = largeStrainConfiguration(X);
+  const Eigen::VectorXd fint = internalForce(*element, X, x, *material);
+  const double energy = element->strainEnergy(X, x, *material, {});
+  ASSERT_TRUE(std::isfinite(energy));
+  ASSERT_GT(energy, 0.0);
+  const double h = std::cbrt(kEps);  // the element is 1 x 1 x 0.25: L = 1
+  Eigen::VectorXd gradient(fint.size());
+  for (int a = 0; a < nodes(); ++a) {
+    for (int i = 0; i < 3; ++i) {
+      Eigen::Matrix3Xd plus = x, minus = x;
+      plus(i, a) += h;
+      minus(i, a) -= h;
+      gradient[3 * a + i] = (element->strainEnergy(X, plus, *material, {}) -
+                             element->strainEnergy(X, minus, *material, {})) /
+                            (2 * h);
+    }
+  }
+  const double error = (gradient - fint).norm() / fint.norm();
+  EXPECT_LT(error, kFdRelativeTolerance);
+  std::cout << "[ measured ] |dW/dx - fint| / |fint| = " << error << '\n';
+  const Eigen::Matrix3Xd moved =
+      (rotation(120.0, Vector3d(1.0, -2.0, 0.7)) * x).colwise() + Vector3d(0.3, -1, 2);
+  EXPECT_NEAR(element->strainEnergy(X, moved, *material, {}), energy, kRoundOff * energy);
+}
+
 TEST_P(SolidShellKernelTest, TangentIsSymmetric) {
   Eigen::VectorXd fint;
   Eigen::MatrixXd K;

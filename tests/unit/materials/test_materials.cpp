@@ -154,6 +154,14 @@ TEST_P(MaterialLaw, StressIsDerivativeOfStrainEnergy) {
   }
 }
 
+TEST_P(MaterialLaw, StoredEnergyIsTheLawsStrainEnergy) {
+  for (const Matrix3d& F : deformationGradients()) {
+    const cc::Vector6d strain = cc::greenLagrangeVoigt(F);
+    const double expected = strainEnergy(GetParam().name, strain);
+    EXPECT_NEAR(material->strainEnergy(strain), expected, kRoundOff * kYoung) << "F =\n" << F;
+  }
+}
+
 // Hooke's matrix from its compliance form (eps = sigma/E - nu/E (tr sigma - sigma), gamma =
 // tau/G), independent of the Lame conversion used by the library.
 cc::Matrix6d hookeFromCompliance() {
