@@ -602,12 +602,12 @@ int runCommand(const RunOptions& options) {
   if (const EnergyRecord& energy = model->energy(); energy.stabilizationDissipation > 0) {
     // The stabilisation's forces are not part of the model: how much of the work they took is
     // what tells whether the answer is still the quasi-static one (Abaqus's ALLSD check).
-    printOut(
-        fmt::format("viscous stabilisation dissipated {:.4g}, {:.3g} % of the work of the "
-                    "loads and supports ({:.4g}); the strain energy is {:.4g}\n",
-                    energy.stabilizationDissipation,
-                    100 * energy.stabilizationDissipation / std::abs(energy.externalWork),
-                    energy.externalWork, energy.strainEnergy));
+    printOut(fmt::format(
+        "viscous stabilisation dissipated {:.4g}, {:.3g} % of the work of the "
+        "loads, supports and moving rigid surfaces ({:.4g}); the strain energy is {:.4g}\n",
+        energy.stabilizationDissipation,
+        100 * energy.stabilizationDissipation / std::abs(energy.externalWork), energy.externalWork,
+        energy.strainEnergy));
   }
   if (!warnings.empty()) printOut(warnings);
   if (!cost.empty()) printOut(cost);

@@ -155,6 +155,11 @@ class ContactPair : public Contribution {
   // Energy (contact_pair_energy.cpp): the stored penalty energy of the last evaluated state, and
   // the frictional dissipation of the last committed step and since the start of the run.
   double penaltyEnergy() const;
+  // The contact force on the pair's slave side in the last evaluated state, sum of -(N n - T) w
+  // over its closed points (the results' total_force). In STAS the slave is the rigid surface:
+  // minus this force is what the surface exerts on the body, whose work the energy account
+  // books.
+  Eigen::Vector3d slaveSideForce() const;
   double stepDissipation() const { return stepDissipation_; }
   double dissipatedEnergy() const { return dissipatedEnergy_; }
 

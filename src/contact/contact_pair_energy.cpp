@@ -27,6 +27,16 @@ double ContactPair::penaltyEnergy() const {
   return energy;
 }
 
+Eigen::Vector3d ContactPair::slaveSideForce() const {
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();
+  for (const PairPoint& point : points_) {
+    const PointTrial& t = point.trial;
+    if (!t.valid || t.state == ContactState::Open) continue;
+    force += (-t.normalTraction * t.normal + t.traction) * t.weight;
+  }
+  return force;
+}
+
 double ContactPair::pointDissipation(const PointTrial& t) const {
   if (!t.valid || t.state != ContactState::Slip) return 0;
   return t.weight * config_.law.friction * std::abs(t.normalTraction) * t.slipIncrement;

@@ -1,7 +1,9 @@
-// Energy balance of a run (issue 16, part 4). Work of the loads and the support reactions,
-// W_ext = sum over steps of (F_n + F_{n+1}) . (u_{n+1} - u_n) / 2 with F = f_ext + reactions
-// (the trapezoidal rule), against the stored strain energy of the elements, the stored energy of
-// the contact penalty springs, the frictional dissipation and the viscous stabilisation's:
+// Energy balance of a run (issue 16, part 4). Work of the loads, the support reactions and the
+// moving rigid surfaces, W_ext = sum over steps of (F_n + F_{n+1}) . (u_{n+1} - u_n) / 2 with
+// F = f_ext + reactions, plus (R_n + R_{n+1}) . (d_{n+1} - d_n) / 2 for each rigid surface with
+// translation d and contact force R on the body (the trapezoidal rule), against the stored strain
+// energy of the elements, the stored energy of the contact penalty springs, the frictional
+// dissipation and the viscous stabilisation's:
 //   W_ext = E_strain + E_contact + D + D_stab  (+ the step-size error of the time integrations).
 // The trapezoidal rule and the backward-Euler dissipation differ from the exact integrals by
 // O(step^2) per step; sum |(F_{n+1} - F_n) . Delta u| / 2, the difference between the
@@ -11,6 +13,8 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <optional>
+#include <utility>
 
 #include "model/model.hpp"
 
@@ -19,6 +23,7 @@ namespace cc {
 void Model::startEnergyAccount(double time, const Eigen::VectorXd& displacement) {
   energyDisplacement_ = displacement;
   energyForce_.setZero(displacement.size());
+  energyRigidForce_.assign(contactPairs_.size(), Eigen::Vector3d::Zero());
   energyForceKnown_ = false;
   energyTime_ = time;
 }
@@ -37,8 +42,30 @@ Eigen::VectorXd loadAndSupportForce(const Model& model, double time,
 
 }  // namespace
 
+// A STAS deck whose rigid die drives the model puts all its work in through the die: without
+// this term its external work was zero, its balance the negative of the stored energy, and a
+// factor chosen from the work (stabilize_share) zero.
+Model::RigidSurfaceWork Model::rigidSurfaceWork(double time, bool previousForcesKnown) const {
+  RigidSurfaceWork result;
+  result.forces.assign(contactPairs_.size(), Eigen::Vector3d::Zero());
+  for (std::size_t i = 0; i < contactPairs_.size(); ++i) {
+    const contact::ContactPair& pair = *contactPairs_[i];
+    const std::optional<Eigen::Vector3d> now = pair.surfaceOffsetAt(time);
+    if (!now) continue;
+    const Eigen::Vector3d motion = *now - *pair.surfaceOffsetAt(energyTime_);
+    result.forces[i] = -pair.slaveSideForce();  // the rigid surface is the slave side
+    const Eigen::Vector3d before = !previousForcesKnown           ? result.forces[i]
+                                   : i < energyRigidForce_.size() ? energyRigidForce_[i]
+                                                                  : Eigen::Vector3d::Zero();
+    result.work += 0.5 * (result.forces[i] + before).dot(motion);
+    result.quadratureBound += 0.5 * std::abs((result.forces[i] - before).dot(motion));
+  }
+  return result;
+}
+
 double Model::viscousFactorForShare(double share, double time, const Eigen::VectorXd& displacement,
-                                    const Eigen::VectorXd& internalForce) const {
+                                    const Eigen::VectorXd& internalForce) {
+  completeContactTrials();  // the rigid surfaces' forces need every contact point's state
   const int n = mesh_.numNodes();
   const double stepLength = time - energyTime_;
   if (!(stepLength > 0)) return 0;
@@ -52,7 +79,8 @@ double Model::viscousFactorForShare(double share, double time, const Eigen::Vect
                                         : energyForceKnown_ ? energyForce_
                                                             : force;
   const double work =
-      std::abs(0.5 * (force + previousForce).dot(displacement - previousDisplacement));
+      std::abs(0.5 * (force + previousForce).dot(displacement - previousDisplacement) +
+               rigidSurfaceWork(time, !booked || energyForceKnown_).work);
   // The dissipation at C = 1: sum_a m_a |dx_a|^2 / dt.
   const Eigen::Matrix3Xd current =
       mesh_.coordinates + Eigen::Map<const Eigen::Matrix3Xd>(displacement.data(), 3, n);
@@ -99,6 +127,10 @@ void Model::accountEnergy(double time, const Eigen::VectorXd& displacement,
   const Eigen::VectorXd increment = displacement - energyDisplacement_;
   energy_.externalWork += 0.5 * (force + energyForce_).dot(increment);
   energy_.quadratureBound += 0.5 * std::abs((force - energyForce_).dot(increment));
+  RigidSurfaceWork rigid = rigidSurfaceWork(time, true);  // zero forces after a restart, as F
+  energy_.externalWork += rigid.work;
+  energy_.quadratureBound += rigid.quadratureBound;
+  energyRigidForce_ = std::move(rigid.forces);
 
   const Eigen::Matrix3Xd current =
       mesh_.coordinates + Eigen::Map<const Eigen::Matrix3Xd>(displacement.data(), 3, n);

@@ -39,7 +39,7 @@ class Model : public NonlinearProblem {
   double stiffestPenaltyRatio() const override;
   void scalePenalties(double factor) override;
   double viscousFactorForShare(double share, double time, const Eigen::VectorXd& displacement,
-                               const Eigen::VectorXd& internalForce) const override;
+                               const Eigen::VectorXd& internalForce) override;
   ViscousFactor viscousFactorForStiffness(double share, double dt) const override;
   void commitStep() override;
   void restoreStep() override;
@@ -113,6 +113,14 @@ class Model : public NonlinearProblem {
   bool ownsContactPoint(const contact::ContactPair& pair, std::size_t item) const;
   void rememberAssemblyState(const AssemblyState& state);
   void completeContactTrials();
+  // The work of the moving rigid surfaces (STAS) from the last booked state to `time`:
+  // sum over pairs of the force each exerts on the body (minus its slave-side force) times the
+  // surface's translation, by the trapezoidal rule; the step's quadrature bound; the forces.
+  struct RigidSurfaceWork {
+    double work = 0, quadratureBound = 0;
+    std::vector<Eigen::Vector3d> forces;
+  };
+  RigidSurfaceWork rigidSurfaceWork(double time, bool previousForcesKnown) const;
 
   ProblemSpec spec_;
   Mesh mesh_;
@@ -131,6 +139,9 @@ class Model : public NonlinearProblem {
   double energyTime_ = 0;
   double energyStepLength_ = 0;
   Eigen::VectorXd energyDisplacement_, energyForce_;
+  // Per contact pair, the force its moving rigid surface exerted at that state (zero for the
+  // others): the rigid surfaces' work is booked with the loads' (energy_account.cpp).
+  std::vector<Eigen::Vector3d> energyRigidForce_;
   bool energyForceKnown_ = true;  // false after a restart, until the first step is booked
   // The viscous stabilisation factor of the last assembly: that of the step being accounted,
   // whose converged state Newton evaluates last.

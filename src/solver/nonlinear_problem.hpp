@@ -54,11 +54,13 @@ class NonlinearProblem {
   virtual void scalePenalties(double /*factor*/) {}
   // NewtonSpec::stabilizationShare: the viscous stabilisation factor C for which the step that
   // converged at `time` with `displacement` and `internalForce` (not yet booked) would have
-  // dissipated `share` of its work of the loads and supports, measured from the last step the
-  // energy balance booked. 0 when that step did no work or moved no solid node.
+  // dissipated `share` of its work of the loads, supports and moving rigid surfaces, measured from
+  // the last step the energy balance booked. 0 when that step did no work or moved no solid node.
+  // Not const: on several processes it first evaluates the contact points of the other processes at
+  // the converged state, for the surfaces' forces.
   virtual double viscousFactorForShare(double /*share*/, double /*time*/,
                                        const Eigen::VectorXd& /*displacement*/,
-                                       const Eigen::VectorXd& /*internalForce*/) const {
+                                       const Eigen::VectorXd& /*internalForce*/) {
     return 0;
   }
   // NewtonSpec::stabilizationOnFailureShare before any step has converged without

@@ -209,8 +209,8 @@ struct NewtonSpec {
   double stabilizationOnFailure = 0;
   // The same with the factor chosen by the run (deck: `stabilize_on_failure_share=F`; off at 0):
   // after every step that converged without stabilisation, C is set so that a step like it
-  // would dissipate the fraction F of its work of the loads and supports (as for
-  // stabilizationShare), and a failing step is stabilised with the last such C
+  // would dissipate the fraction F of its work of the loads, supports and moving rigid surfaces (as
+  // for stabilizationShare), and a failing step is stabilised with the last such C
   // (LoadStepper::measureFailureFactor). The factor C depends on the model's units, masses and
   // speeds; the share does not, so one value serves a mesh refined or a model rescaled. Never
   // set together with the three above.

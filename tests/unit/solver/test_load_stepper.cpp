@@ -166,7 +166,7 @@ TEST(LoadStepper, GivingUpWhilePointsSwitchWithoutAFoldNamesStabilization) {
 struct MeasuringChain : SpringChain {
   using SpringChain::SpringChain;
   double viscousFactorForShare(double share, double time, const Eigen::VectorXd&,
-                               const Eigen::VectorXd&) const override {
+                               const Eigen::VectorXd&) override {
     return share * (10 + time);
   }
 };
@@ -318,7 +318,7 @@ TEST(LoadStepper, WithoutAQuasiStaticStepOrAStiffnessAShareDoesNotStabilize) {
 struct StiffChain : MeasuringChain {
   using MeasuringChain::MeasuringChain;
   double viscousFactorForShare(double share, double time, const Eigen::VectorXd&,
-                               const Eigen::VectorXd&) const override {
+                               const Eigen::VectorXd&) override {
     return share * (20 - time);
   }
   ViscousFactor viscousFactorForStiffness(double share, double) const override {
