@@ -30,7 +30,7 @@ StartState restartFrom(const std::string& file, int fromStep, Model& model) {
   start.lastDt = point.record.lastDt;
   start.viscousFactor = point.record.viscousFactor;
   start.viscousFactorFromStiffness = point.record.viscousFactorFromStiffness;
-  model.startEnergyAccount(start.time, start.displacement);
+  model.startEnergyAccount(start.time, start.displacement, point.record.energy);
   return start;
 }
 
@@ -48,6 +48,7 @@ RestartRecord restartRecordOf(const Model& model, const Eigen::VectorXd& displac
   record.viscousFactorFromStiffness = stepper.chosenFactorFromStiffness();
   record.stabilizing = nextStepSize.stabilizing;
   record.stabilizedEasySteps = nextStepSize.stabilizedEasySteps;
+  record.energy = model.energyRestartData();
   return record;
 }
 

@@ -162,6 +162,8 @@ class ContactPair : public Contribution {
   Eigen::Vector3d slaveSideForce() const;
   double stepDissipation() const { return stepDissipation_; }
   double dissipatedEnergy() const { return dissipatedEnergy_; }
+  // A run continued from a restart goes on from the dissipation stored there.
+  void restoreDissipatedEnergy(double energy) { dissipatedEnergy_ = energy; }
 
   // Restart (contact_pair_history.cpp): the committed history of every point and the search
   // state it continues from, one column of kHistoryRows numbers per point, and its
@@ -269,7 +271,7 @@ class ContactPair : public Contribution {
   std::string augmentationNote_;
   std::vector<double> updateRatios_;  // this step's multiplier update / normal force, per update
   double stepDissipation_ = 0;
-  double dissipatedEnergy_ = 0;  // since the start of this run (not part of the restart data)
+  double dissipatedEnergy_ = 0;  // since the start of the run (restart data since session 51)
 };
 
 }  // namespace cc::contact

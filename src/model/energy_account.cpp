@@ -20,12 +20,55 @@
 
 namespace cc {
 
-void Model::startEnergyAccount(double time, const Eigen::VectorXd& displacement) {
+void Model::startEnergyAccount(double time, const Eigen::VectorXd& displacement,
+                               const RestartRecord::Energy& stored) {
   energyDisplacement_ = displacement;
   energyForce_.setZero(displacement.size());
   energyRigidForce_.assign(contactPairs_.size(), Eigen::Vector3d::Zero());
   energyForceKnown_ = false;
   energyTime_ = time;
+  energy_ = EnergyRecord{};
+  const std::vector<int>& prescribed = dofs_.prescribedDofs();
+  const auto pairs = static_cast<Eigen::Index>(contactPairs_.size());
+  if (stored.reactions.size() != static_cast<Eigen::Index>(prescribed.size()) ||
+      stored.pairs.rows() != pairs || stored.pairs.cols() != 4) {
+    return;
+  }
+  energy_.externalWork = stored.externalWork;
+  energy_.stabilizationDissipation = stored.stabilizationDissipation;
+  energy_.quadratureBound = stored.quadratureBound;
+  externalForces(time, energyForce_);
+  for (std::size_t i = 0; i < prescribed.size(); ++i) {
+    energyForce_[prescribed[i]] = stored.reactions[static_cast<Eigen::Index>(i)];
+  }
+  for (Eigen::Index p = 0; p < pairs; ++p) {
+    energyRigidForce_[static_cast<std::size_t>(p)] = stored.pairs.row(p).head<3>().transpose();
+    contactPairs_[static_cast<std::size_t>(p)]->restoreDissipatedEnergy(stored.pairs(p, 3));
+  }
+  energyForceKnown_ = true;
+}
+
+RestartRecord::Energy Model::energyRestartData() const {
+  RestartRecord::Energy stored;
+  const std::vector<int>& prescribed = dofs_.prescribedDofs();
+  if (energyForce_.size() != 3 * static_cast<Eigen::Index>(mesh_.numNodes()) ||
+      energyRigidForce_.size() != contactPairs_.size()) {
+    return stored;  // no step booked yet
+  }
+  stored.externalWork = energy_.externalWork;
+  stored.stabilizationDissipation = energy_.stabilizationDissipation;
+  stored.quadratureBound = energy_.quadratureBound;
+  stored.reactions.resize(static_cast<Eigen::Index>(prescribed.size()));
+  for (std::size_t i = 0; i < prescribed.size(); ++i) {
+    stored.reactions[static_cast<Eigen::Index>(i)] = energyForce_[prescribed[i]];
+  }
+  stored.pairs.resize(static_cast<Eigen::Index>(contactPairs_.size()), 4);
+  for (std::size_t p = 0; p < contactPairs_.size(); ++p) {
+    const auto row = static_cast<Eigen::Index>(p);
+    stored.pairs.row(row).head<3>() = energyRigidForce_[p].transpose();
+    stored.pairs(row, 3) = contactPairs_[p]->dissipatedEnergy();
+  }
+  return stored;
 }
 
 namespace {
@@ -125,9 +168,11 @@ void Model::accountEnergy(double time, const Eigen::VectorXd& displacement,
   }
   const Eigen::VectorXd force = loadAndSupportForce(*this, time, internalForce);
   const Eigen::VectorXd increment = displacement - energyDisplacement_;
-  energy_.externalWork += 0.5 * (force + energyForce_).dot(increment);
-  energy_.quadratureBound += 0.5 * std::abs((force - energyForce_).dot(increment));
-  RigidSurfaceWork rigid = rigidSurfaceWork(time, true);  // zero forces after a restart, as F
+  // Forces not known (a restart from a file without them): the step's own, a one-sided rule.
+  const Eigen::VectorXd& previousForce = energyForceKnown_ ? energyForce_ : force;
+  energy_.externalWork += 0.5 * (force + previousForce).dot(increment);
+  energy_.quadratureBound += 0.5 * std::abs((force - previousForce).dot(increment));
+  RigidSurfaceWork rigid = rigidSurfaceWork(time, energyForceKnown_);
   energy_.externalWork += rigid.work;
   energy_.quadratureBound += rigid.quadratureBound;
   energyRigidForce_ = std::move(rigid.forces);

@@ -76,6 +76,8 @@ class Model : public NonlinearProblem {
   // step size are left to the caller), and its restoration. restoreHistory throws
   // std::invalid_argument naming what does not fit, e.g. when the deck or its mesh changed.
   RestartRecord saveHistory() const;
+  // The energy account's part of the restart data, at the last booked step (empty before one).
+  RestartRecord::Energy energyRestartData() const;
   void restoreHistory(const RestartRecord& history);
 
   const Mesh& mesh() const { return mesh_; }
@@ -94,10 +96,13 @@ class Model : public NonlinearProblem {
   void accountEnergy(double time, const Eigen::VectorXd& displacement,
                      const Eigen::VectorXd& internalForce);
   const EnergyRecord& energy() const { return energy_; }
-  // A run continued with --restart: the sums start at the restart state, not at the unloaded
-  // one. Its forces are not known before the first step, whose work is therefore one-sided
-  // (within that step's quadrature bound).
-  void startEnergyAccount(double time, const Eigen::VectorXd& displacement);
+  // A run continued with --restart: the sums go on from those stored at the restart step, and the
+  // first step's work takes the forces stored there (its support reactions and rigid surfaces'
+  // forces), as the uninterrupted run does. A file without them (written before the
+  // fifty-first session): the sums start at zero and that step's work is one-sided, with its own
+  // force (within its quadrature bound).
+  void startEnergyAccount(double time, const Eigen::VectorXd& displacement,
+                          const RestartRecord::Energy& stored = {});
 
   // The record of a converged step (reactions, set sums, stresses and contact as selected).
   // The returned record points into buffers owned by the model, valid until the next call.

@@ -16,6 +16,11 @@ std::string restartGroupPath(int step) {
 
 // The step's increment (nodes x 3) and attribute last_dt, when a phase extrapolates.
 constexpr const char* kLastIncrement = "last_increment";
+// The energy account (RestartRecord::Energy): the support reactions at the prescribed dofs
+// (dofs x 1) and per contact pair its rigid surface's force and dissipation (pairs x 4), with
+// the running sums as attributes of the first.
+constexpr const char* kEnergyReactions = "energy_reactions";
+constexpr const char* kEnergyPairs = "energy_pairs";
 
 // Datasets of one history group keep the user's name in the "name" attribute (link names
 // replace '/', see layout::linkName).
@@ -23,6 +28,34 @@ void writeNamed(h5::FileRef file, hid_t group, const std::string& name, const do
                 hsize_t rows, hsize_t cols) {
   h5::Dataset dataset = h5::writeDoubles(file, group, layout::linkName(name), data, rows, cols);
   h5::writeAttribute(file, dataset.get(), "name", name);
+}
+
+void writeEnergy(h5::FileRef file, hid_t group, const RestartRecord::Energy& energy) {
+  if (energy.pairs.cols() != 4) return;  // no step booked
+  static constexpr double kNoValue = 0;  // HDF5 wants a buffer even for no values
+  const h5::Dataset reactions =
+      h5::writeDoubles(file, group, kEnergyReactions,
+                       energy.reactions.size() > 0 ? energy.reactions.data() : &kNoValue,
+                       static_cast<hsize_t>(energy.reactions.size()), 0);
+  h5::writeAttribute(file, reactions.get(), "external_work", energy.externalWork);
+  h5::writeAttribute(file, reactions.get(), "stabilization_dissipation",
+                     energy.stabilizationDissipation);
+  h5::writeAttribute(file, reactions.get(), "quadrature_bound", energy.quadratureBound);
+  const Eigen::Matrix<double, Eigen::Dynamic, 4, Eigen::RowMajor> pairs = energy.pairs;
+  h5::writeDoubles(file, group, kEnergyPairs, pairs.size() > 0 ? pairs.data() : &kNoValue,
+                   static_cast<hsize_t>(pairs.rows()), 4);
+}
+
+void readEnergy(const ResultsReader& reader, const std::string& group,
+                RestartRecord::Energy& energy) {
+  const std::string reactions = group + "/" + kEnergyReactions;
+  if (!reader.hasDataset(reactions) || !reader.hasDataset(group + "/" + kEnergyPairs)) return;
+  const Eigen::MatrixXd values = reader.readMatrix(reactions);
+  energy.reactions = Eigen::Map<const Eigen::VectorXd>(values.data(), values.size());
+  energy.externalWork = reader.numberAttribute(reactions, "external_work");
+  energy.stabilizationDissipation = reader.numberAttribute(reactions, "stabilization_dissipation");
+  energy.quadratureBound = reader.numberAttribute(reactions, "quadrature_bound");
+  energy.pairs = reader.readMatrix(group + "/" + kEnergyPairs);
 }
 
 }  // namespace
@@ -51,6 +84,7 @@ void writeRestart(h5::FileRef file, hid_t stepGroup, const RestartRecord& restar
   if (restart.stabilizing) {
     h5::writeAttribute(file, group.get(), "stabilized_easy_steps", restart.stabilizedEasySteps);
   }
+  writeEnergy(file, group.get(), restart.energy);
   h5::Group elements = h5::createGroup(file, group.get(), layout::kElementHistoryGroup);
   for (const auto& [name, values] : restart.elementHistory) {
     // An empty history (Hex8) is written as an empty dataset so that the set is still listed;
@@ -118,6 +152,7 @@ RestartPoint readRestart(const std::string& path, int step) {
     record.stabilizedEasySteps =
         static_cast<int>(reader.numberAttribute(group, "stabilized_easy_steps"));
   }
+  readEnergy(reader, group, record.energy);
   const std::string elements = group + "/" + layout::kElementHistoryGroup;
   for (const std::string& link : reader.children(elements)) {
     const std::string dataset = elements + "/" + link;

@@ -59,7 +59,7 @@ struct ContactPairRecord {
 // sum over steps of |(F_{n+1} - F_n) . (u_{n+1} - u_n)| / 2 is the estimate.
 struct EnergyRecord {
   double externalWork = 0;
-  double strainEnergy = 0;  // NaN if an element kernel has no stored energy (solid-shells)
+  double strainEnergy = 0;  // NaN if a material law has no stored energy
   double contactEnergy = 0;
   double dissipation = 0;  // since the start
   double dissipationPower = 0;
@@ -93,6 +93,16 @@ struct RestartRecord {
   // steps counted towards leaving the stabilisation, so that a restart goes on as the run would.
   bool stabilizing = false;
   int stabilizedEasySteps = 0;
+  // The energy account at the step (Model::accountEnergy), so that a continued run books its
+  // work and dissipation on from there as the uninterrupted run does: the running sums, the
+  // support reactions at the prescribed dofs (in DofMap order; the loads follow from the deck)
+  // and per contact pair its moving rigid surface's force on the body and its dissipation.
+  // Empty reactions: not stored (files written before the fifty-first session).
+  struct Energy {
+    double externalWork = 0, stabilizationDissipation = 0, quadratureBound = 0;
+    Eigen::VectorXd reactions;
+    Eigen::MatrixXd pairs;  // pairs x 4: rigid surface force (3), dissipated energy
+  } energy;
 };
 
 struct StepRecord {

@@ -1,8 +1,12 @@
 // Restart support in-process (issue 7): the element (EAS) and contact (STAS) history a model
 // saves is restored exactly into a fresh model, a mismatching history is refused with its name,
 // and a run continued from a saved step ends exactly where the uninterrupted run ends.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
+#include <hdf5.h>
 
+#include <algorithm>
+#include <cmath>
 #include <fstream>
 
 #include "cube_decks.hpp"
@@ -210,27 +214,88 @@ TEST(History, AChosenViscousFactorIsRestartData) {
             1e-12 * expected.cwiseAbs().maxCoeff());
 }
 
+// Removes the energy account's restart data of `step` from `path`: a file as written before the
+// fifty-first session.
+void dropEnergyRestartData(const std::string& path, int step) {
+  const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  ASSERT_GE(file, 0) << path;
+  const std::string group = layout::stepGroupPath(step) + "/" + layout::kRestartGroup;
+  for (const char* name : {"energy_reactions", "energy_pairs"}) {
+    EXPECT_GE(H5Ldelete(file, (group + "/" + name).c_str(), H5P_DEFAULT), 0) << name;
+  }
+  H5Fclose(file);
+}
+
 // A run continued from a file whose step holds no factor (here one written without
 // stabilisation, its deck then given a stabilised phase) chooses it from its first step. The
-// forces at the restart state are not stored, so that step's work is counted with its own
-// force, F_3 . du_3, where the uninterrupted run counts (F_2 + F_3) . du_3 / 2. Step 3 itself
-// is the same in both (solved without stabilisation from the same state), and the load is 10 t
-// on free dofs only, so the two factors stand exactly as F_3 / ((F_2 + F_3) / 2) = 7.5 / 6.25.
-// Taking the unknown force as zero instead would halve the work (ratio 0.6).
-TEST(History, AFactorChosenAfterARestartCountsTheStepsWorkWithItsOwnForce) {
+// forces at the restart state are restart data, so that step's work is counted as in the
+// uninterrupted run, (F_2 + F_3) . du_3 / 2, and the factors agree. From a file without them
+// the step's work is counted with its own force, F_3 . du_3. Step 3 itself is the same in all
+// three runs (solved without stabilisation from the same state), and the load is 10 t on free
+// dofs only, so that factor stands to the uninterrupted one exactly as
+// F_3 / ((F_2 + F_3) / 2) = 7.5 / 6.25. Taking the unknown force as zero instead would halve
+// the work (ratio 0.6).
+TEST(History, AFactorChosenAfterARestartCountsTheStepsWorkAsTheUninterruptedRun) {
   const std::string directory = scratchDirectory("factor_after_restart");
   const std::string phases = "  steps 2 dt=0.25\n  steps 4 dt=0.25 stabilize_share=0.05\n";
   writeClampedCubeDeck(directory, "plain.deck", "  steps 6 dt=0.25\n");
   writeClampedCubeDeck(directory, "stabilized.deck", phases);
   ASSERT_EQ(runCovcontact("run -q --threads 1 plain.deck -o plain.h5", directory).exitCode, 0);
+  ASSERT_EQ(runCovcontact("run -q --threads 1 plain.deck -o old.h5", directory).exitCode, 0);
+  ASSERT_NO_FATAL_FAILURE(dropEnergyRestartData(directory + "/old.h5", 2));
   ASSERT_EQ(runCovcontact("run -q --threads 1 stabilized.deck -o full.h5", directory).exitCode, 0);
-  const CommandResult continued = runCovcontact(
-      "run -q --threads 1 stabilized.deck --restart plain.h5 --from-step 2 -o continued.h5",
-      directory);
-  ASSERT_EQ(continued.exitCode, 0) << continued.error;
+  for (const char* from : {"plain", "old"}) {
+    const CommandResult continued = runCovcontact(
+        fmt::format("run -q --threads 1 stabilized.deck --restart {}.h5 --from-step 2 -o "
+                    "continued_{}.h5",
+                    from, from),
+        directory);
+    ASSERT_EQ(continued.exitCode, 0) << continued.error;
+  }
   const double uninterrupted = chosenFactor(ResultsReader(directory + "/full.h5"), 3);
-  const double afterRestart = chosenFactor(ResultsReader(directory + "/continued.h5"), 3);
-  EXPECT_NEAR(afterRestart / uninterrupted, 7.5 / 6.25, 1e-12);
+  const double afterRestart = chosenFactor(ResultsReader(directory + "/continued_plain.h5"), 3);
+  const double fromOldFile = chosenFactor(ResultsReader(directory + "/continued_old.h5"), 3);
+  EXPECT_NEAR(afterRestart / uninterrupted, 1.0, 1e-12);
+  EXPECT_NEAR(fromOldFile / uninterrupted, 7.5 / 6.25, 1e-12);
+}
+
+// The energy account is restart data: a cube clamped at its bottom, pulled sideways by a load
+// and pressed and dragged by a rigid plate with friction (the work of loads, supports and a
+// moving rigid surface, and dissipation), continued from step 4, books every later step's
+// energy as the uninterrupted run does. Before, the sums started again from zero and the first
+// step's work took zero for the forces at the restart state.
+TEST(History, AContinuedRunBooksItsEnergyAsTheUninterruptedRun) {
+  const std::string directory = scratchDirectory("energy_after_restart");
+  std::ofstream(directory + "/plate.deck")
+      << "mesh \"" << COVCONTACT_SOURCE_DIR << "/meshes/cube.geo\" n=2\n"
+      << "material m neohooke E=100 nu=0.3\n"
+         "elements cube hex8 material=m\n"
+         "fix zmin all\n"
+         "load xmax fx \"2*t\" total\n"
+         "rigid plate plane origin=(0,0,1) normal=(0,0,-1) uz \"-0.05*min(t/0.25,1)\" "
+         "ux \"0.4*max(t-0.25,0)\"\n"
+         "contact stas master=zmax slave=plate eps_n=1e4 eps_t=1e4 mu=0.3 name=top\n"
+         "solve\n  steps 8 dt=0.125\nend\n";
+  ASSERT_EQ(runCovcontact("run -q --threads 1 plate.deck -o full.h5", directory).exitCode, 0);
+  const CommandResult continued = runCovcontact(
+      "run -q --threads 1 plate.deck --restart full.h5 --from-step 4 -o continued.h5", directory);
+  ASSERT_EQ(continued.exitCode, 0) << continued.error;
+  const ResultsReader full(directory + "/full.h5");
+  const ResultsReader restarted(directory + "/continued.h5");
+  const std::string lastEnergy = layout::stepGroupPath(8) + "/energy";
+  ASSERT_GT(full.numberAttribute(lastEnergy, "dissipation"),
+            0.3 * full.numberAttribute(lastEnergy, "external_work"));
+  for (int step = 5; step <= 8; ++step) {
+    SCOPED_TRACE(step);
+    const std::string energy = layout::stepGroupPath(step) + "/energy";
+    for (const char* name : {"external_work", "strain_energy", "contact_energy", "dissipation",
+                             "stabilization_dissipation", "balance", "quadrature_bound"}) {
+      const double expected = full.numberAttribute(energy, name);
+      EXPECT_NEAR(restarted.numberAttribute(energy, name), expected,
+                  1e-12 * std::max(1.0, std::abs(expected)))
+          << name;
+    }
+  }
 }
 
 // stabilize_on_failure: the free cube (singular without stabilisation) fails at step 1 and is
