@@ -126,6 +126,9 @@ class Model : public NonlinearProblem {
     std::vector<Eigen::Vector3d> forces;
   };
   RigidSurfaceWork rigidSurfaceWork(double time, bool previousForcesKnown) const;
+  // The viscous stabilisation's work of the step ending at `current`, and its share of the
+  // quadrature bound (energy_account.cpp).
+  void accountViscousWork(const Eigen::Matrix3Xd& current);
 
   ProblemSpec spec_;
   Mesh mesh_;
@@ -147,6 +150,10 @@ class Model : public NonlinearProblem {
   // Per contact pair, the force its moving rigid surface exerted at that state (zero for the
   // others): the rigid surfaces' work is booked with the loads' (energy_account.cpp).
   std::vector<Eigen::Vector3d> energyRigidForce_;
+  // The viscous stabilisation of that step, C / dt (0: none), and the displacement before it,
+  // for the change of the viscous force over the next step.
+  double energyViscousRate_ = 0;
+  Eigen::VectorXd energyEarlierDisplacement_;
   bool energyForceKnown_ = true;  // false after a restart, until the first step is booked
   // The viscous stabilisation factor of the last assembly: that of the step being accounted,
   // whose converged state Newton evaluates last.

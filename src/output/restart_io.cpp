@@ -21,6 +21,8 @@ constexpr const char* kLastIncrement = "last_increment";
 // the running sums as attributes of the first.
 constexpr const char* kEnergyReactions = "energy_reactions";
 constexpr const char* kEnergyPairs = "energy_pairs";
+// After a stabilised step: its increment (nodes x 3), its C / dt an attribute of the reactions.
+constexpr const char* kEnergyViscousIncrement = "energy_viscous_increment";
 
 // Datasets of one history group keep the user's name in the "name" attribute (link names
 // replace '/', see layout::linkName).
@@ -41,6 +43,11 @@ void writeEnergy(h5::FileRef file, hid_t group, const RestartRecord::Energy& ene
   h5::writeAttribute(file, reactions.get(), "stabilization_dissipation",
                      energy.stabilizationDissipation);
   h5::writeAttribute(file, reactions.get(), "quadrature_bound", energy.quadratureBound);
+  if (energy.viscousRate > 0 && energy.viscousIncrement.size() > 0) {
+    h5::writeAttribute(file, reactions.get(), "viscous_rate", energy.viscousRate);
+    h5::writeDoubles(file, group, kEnergyViscousIncrement, energy.viscousIncrement.data(),
+                     static_cast<hsize_t>(energy.viscousIncrement.size() / 3), 3);
+  }
   const Eigen::Matrix<double, Eigen::Dynamic, 4, Eigen::RowMajor> pairs = energy.pairs;
   h5::writeDoubles(file, group, kEnergyPairs, pairs.size() > 0 ? pairs.data() : &kNoValue,
                    static_cast<hsize_t>(pairs.rows()), 4);
@@ -56,6 +63,12 @@ void readEnergy(const ResultsReader& reader, const std::string& group,
   energy.stabilizationDissipation = reader.numberAttribute(reactions, "stabilization_dissipation");
   energy.quadratureBound = reader.numberAttribute(reactions, "quadrature_bound");
   energy.pairs = reader.readMatrix(group + "/" + kEnergyPairs);
+  if (reader.hasDataset(group + "/" + kEnergyViscousIncrement)) {
+    energy.viscousRate = reader.numberAttribute(reactions, "viscous_rate");
+    const Eigen::MatrixXd byNode =
+        reader.readMatrix(group + "/" + kEnergyViscousIncrement).transpose();
+    energy.viscousIncrement = Eigen::Map<const Eigen::VectorXd>(byNode.data(), byNode.size());
+  }
 }
 
 }  // namespace

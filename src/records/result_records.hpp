@@ -102,6 +102,9 @@ struct RestartRecord {
     double externalWork = 0, stabilizationDissipation = 0, quadratureBound = 0;
     Eigen::VectorXd reactions;
     Eigen::MatrixXd pairs;  // pairs x 4: rigid surface force (3), dissipated energy
+    // A stabilised step: its C / dt and its increment (3 * numNodes), for the viscous force.
+    double viscousRate = 0;
+    Eigen::VectorXd viscousIncrement;
   } energy;
 };
 
