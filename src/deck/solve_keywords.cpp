@@ -60,80 +60,79 @@ std::string predictorName(NewtonSpec::Predictor predictor) {
 
 std::vector<ValueDecl> newtonParameters() {
   const NewtonSpec defaults;
-  return {
-      integerValue("maxit", "Newton iterations per step before the step counts as failed")
-          .withRange(Range::atLeast(1))
-          .withDefault(defaultText(defaults.maxIterations)),
-      numberValue("residual", "tolerance on the relative residual norm |R_k| / |R_0|")
-          .withRange(Range::greaterThan(0))
-          .withDefault(defaultText(defaults.residualTolerance)),
-      numberValue("energy", "tolerance on the relative energy norm |du_k . R_k| / |du_0 . R_0|")
-          .withRange(Range::greaterThan(0))
-          .withDefault(defaultText(defaults.energyTolerance)),
-      enumValue("converge", choiceNames(convergenceCriteria()),
-                "which tolerance decides convergence: energy, residual, both, or either")
-          .withDefault(criterionName(defaults.criterion)),
-      numberValue("diverge", "the step fails when |R_k| exceeds this multiple of |R_0|")
-          .withRange(Range::greaterThan(1))
-          .withDefault(defaultText(defaults.divergenceFactor)),
-      boolValue("line_search",
-                "backtracking line search along the Newton direction from the first "
-                "iteration; when not given: yes in a deck with an enforcement=augmented "
-                "contact pair, otherwise no. Without it the line search still takes a failed "
-                "attempt's retry and the rest of an attempt whose residual stops improving "
-                "or whose contact active set cycles near convergence"),
-      enumValue("predictor", choiceNames(newtonPredictors()),
-                "first iterate of a step: the converged state with the prescribed increment "
-                "(prescribed), or plus the last step's increment scaled to dt (extrapolate; "
-                "not at a step where a rigid surface's motion turns)")
-          .withDefault(predictorName(defaults.predictor)),
-      boolValue("penalty_continuation",
-                "a step that fails with and without line search at a contact penalty more "
-                "than 100 times its automatic value is retried by solves at penalties growing "
-                "10-fold from the automatic one")
-          .withDefault(defaultText(defaults.penaltyContinuation)),
-      numberValue("aug_inner",
-                  "augmented-Lagrangian contact: a re-solve after a multiplier update stops "
-                  "once its residual has fallen to this fraction of its first, so that the "
-                  "updates interleave with Newton iterations; the step is solved to the full "
-                  "criterion once the update rule is met. 0: every re-solve converges fully "
-                  "(Uzawa per converged step)")
-          .withRange(Range::between(0, true, 1, false))
-          .withDefault(defaultText(defaults.augmentedInnerTolerance)),
-      numberValue("stabilize",
-                  "viscous stabilisation: every solid node carries the force C m (x - x_n) / "
-                  "dt, m its share of the elements' volumes, x_n its place at the last "
-                  "converged step; passes an instability or a body held by contact alone, "
-                  "and the energy balance reports its dissipation. 0: off")
-          .withRange(Range::atLeast(0))
-          .withDefault(defaultText(defaults.stabilization)),
-      numberValue(
-          "stabilize_share",
-          "viscous stabilisation whose factor the run chooses: the phase's first step "
-          "is solved without it, then C is set so that a step like that one would "
-          "dissipate this fraction of its external work (of the loads, supports and "
-          "moving rigid surfaces: the share each step's line reports); replaces stabilize=. 0: off")
-          .withRange(Range::between(0, true, 1, false))
-          .withDefault(defaultText(defaults.stabilizationShare)),
-      numberValue("stabilize_on_failure",
-                  "viscous stabilisation only where steps fail without it: such a step "
-                  "(after its line-search retry) is solved again at the same step size with "
-                  "the factor C, and its cut-backs and the next steps keep it until "
-                  "grow_after of them in a row converged easily; replaces stabilize=, "
-                  "stabilize_share= and stabilize_on_failure_share=. 0: off")
-          .withRange(Range::atLeast(0))
-          .withDefault(defaultText(defaults.stabilizationOnFailure)),
-      numberValue("stabilize_on_failure_share",
-                  "as stabilize_on_failure, with the factor chosen by the run: after every "
-                  "step that converged without stabilisation, C is set so that a step like it "
-                  "would dissipate this fraction of its external work, and a failing step is "
-                  "stabilised with the last such C (before any such step, "
-                  "e.g. for a body that only contact holds: C = F E dt / L^2 from the "
-                  "stiffness, E and L = V^(1/3) of the element set with the smallest E / "
-                  "L^2, lowered by each stabilised step that dissipates more than F); "
-                  "replaces the three above. 0: off")
-          .withRange(Range::between(0, true, 1, false))
-          .withDefault(defaultText(defaults.stabilizationOnFailureShare))};
+  return {integerValue("maxit", "Newton iterations per step before the step counts as failed")
+              .withRange(Range::atLeast(1))
+              .withDefault(defaultText(defaults.maxIterations)),
+          numberValue("residual", "tolerance on the relative residual norm |R_k| / |R_0|")
+              .withRange(Range::greaterThan(0))
+              .withDefault(defaultText(defaults.residualTolerance)),
+          numberValue("energy", "tolerance on the relative energy norm |du_k . R_k| / |du_0 . R_0|")
+              .withRange(Range::greaterThan(0))
+              .withDefault(defaultText(defaults.energyTolerance)),
+          enumValue("converge", choiceNames(convergenceCriteria()),
+                    "which tolerance decides convergence: energy, residual, both, or either")
+              .withDefault(criterionName(defaults.criterion)),
+          numberValue("diverge", "the step fails when |R_k| exceeds this multiple of |R_0|")
+              .withRange(Range::greaterThan(1))
+              .withDefault(defaultText(defaults.divergenceFactor)),
+          boolValue("line_search",
+                    "backtracking line search along the Newton direction from the first "
+                    "iteration; when not given: yes in a deck with an enforcement=augmented "
+                    "contact pair, otherwise no. Without it the line search still takes a failed "
+                    "attempt's retry and the rest of an attempt whose residual stops improving "
+                    "or whose contact active set cycles near convergence"),
+          enumValue("predictor", choiceNames(newtonPredictors()),
+                    "first iterate of a step: the converged state with the prescribed increment "
+                    "(prescribed), or plus the last step's increment scaled to dt (extrapolate; "
+                    "not at a step where a rigid surface's motion turns)")
+              .withDefault(predictorName(defaults.predictor)),
+          boolValue("penalty_continuation",
+                    "a step that fails with and without line search at a contact penalty more "
+                    "than 100 times its automatic value is retried by solves at penalties growing "
+                    "10-fold from the automatic one")
+              .withDefault(defaultText(defaults.penaltyContinuation)),
+          numberValue("aug_inner",
+                      "augmented-Lagrangian contact: a re-solve after a multiplier update stops "
+                      "once its residual has fallen to this fraction of its first, so that the "
+                      "updates interleave with Newton iterations; the step is solved to the full "
+                      "criterion once the update rule is met. 0: every re-solve converges fully "
+                      "(Uzawa per converged step)")
+              .withRange(Range::between(0, true, 1, false))
+              .withDefault(defaultText(defaults.augmentedInnerTolerance)),
+          numberValue("stabilize",
+                      "viscous stabilisation: every solid node carries the force C m (x - x_n) / "
+                      "dt, m its share of the elements' volumes, x_n its place at the last "
+                      "converged step; passes an instability or a body held by contact alone, "
+                      "and the energy balance reports its dissipation. 0: off")
+              .withRange(Range::atLeast(0))
+              .withDefault(defaultText(defaults.stabilization)),
+          numberValue("stabilize_share",
+                      "viscous stabilisation whose factor the run chooses: the phase's first step "
+                      "is solved without it, then C is set so that a step like that one would "
+                      "dissipate this fraction of its external work (of the loads, supports and "
+                      "moving rigid surfaces: the share each step's line reports); replaces "
+                      "stabilize=. 0: off")
+              .withRange(Range::between(0, true, 1, false))
+              .withDefault(defaultText(defaults.stabilizationShare)),
+          numberValue("stabilize_on_failure",
+                      "viscous stabilisation only where steps fail without it: such a step "
+                      "(after its line-search retry) is solved again at the same step size with "
+                      "the factor C, and its cut-backs and the next steps keep it until "
+                      "grow_after of them in a row converged easily; replaces stabilize=, "
+                      "stabilize_share= and stabilize_on_failure_share=. 0: off")
+              .withRange(Range::atLeast(0))
+              .withDefault(defaultText(defaults.stabilizationOnFailure)),
+          numberValue("stabilize_on_failure_share",
+                      "as stabilize_on_failure, with the factor chosen by the run: after every "
+                      "step that converged without stabilisation, C is set so that a step like it "
+                      "would dissipate this fraction of its external work, and a failing step is "
+                      "stabilised with the last such C (before any such step, "
+                      "e.g. for a body that only contact holds: C = F E dt / L^2 from the "
+                      "stiffness, E and L = V^(1/3) of the element set with the smallest E / "
+                      "L^2, lowered by each stabilised step that dissipates more than F); "
+                      "replaces the three above. 0: off")
+              .withRange(Range::between(0, true, 1, false))
+              .withDefault(defaultText(defaults.stabilizationOnFailureShare))};
 }
 
 std::vector<ValueDecl> cutbackParameters() {
