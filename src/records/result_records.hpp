@@ -51,12 +51,14 @@ struct ContactPairRecord {
   double dissipationPower = 0;  // dissipation / dt of this step
 };
 
-// Global energy balance of a converged step (model/energy_account.cpp): work of the loads and
-// support reactions (trapezoidal rule over the steps) against the stored strain energy, the
-// stored penalty energy of the contact pairs and the frictional dissipation. balance =
-// externalWork - strainEnergy - contactEnergy - dissipation is zero up to the step-size error
-// of the trapezoidal rule and of the backward-Euler dissipation, of which quadratureBound =
-// sum over steps of |(F_{n+1} - F_n) . (u_{n+1} - u_n)| / 2 is the estimate.
+// Global energy balance of a converged step (model/energy_account.cpp): work of the loads, the
+// support reactions and the moving rigid surfaces (trapezoidal rule over the steps) against the
+// stored strain energy, the stored penalty energy of the contact pairs, the frictional and the
+// viscous stabilisation's dissipation. balance = externalWork - strainEnergy - contactEnergy -
+// dissipation - stabilizationDissipation is zero up to the step-size error of the trapezoidal
+// rule and of the backward-Euler dissipations, of which quadratureBound = sum over steps of
+// |(F_{n+1} - F_n) . (u_{n+1} - u_n)| / 2 (with the rigid surfaces' forces and motions, and the
+// change of the viscous forces) is the estimate.
 struct EnergyRecord {
   double externalWork = 0;
   double strainEnergy = 0;  // NaN if a material law has no stored energy
