@@ -476,7 +476,8 @@ def stabilized_strip(args):
         names = step_names(one)
         check(step_names(two) == names and len(names) >= 10,
               f"stabilised strip: steps {step_names(two)} on 2 processes, serial {names}")
-        for attribute in ("stabilized_retries", "total_iterations", "cutbacks", "discarded_iterations"):
+        for attribute in ("stabilized_retries", "total_iterations", "cutbacks",
+                          "discarded_iterations"):
             values = [f["summary"].attrs[attribute] for f in (one, two)]
             check(values[0] == values[1] and (attribute != "stabilized_retries" or values[0] > 0),
                   f"stabilised strip: {attribute} {values} (serial, 2 processes)")
