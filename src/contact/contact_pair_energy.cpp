@@ -30,9 +30,7 @@ double ContactPair::penaltyEnergy() const {
 Eigen::Vector3d ContactPair::slaveSideForce() const {
   Eigen::Vector3d force = Eigen::Vector3d::Zero();
   for (const PairPoint& point : points_) {
-    const PointTrial& t = point.trial;
-    if (!t.valid || t.state == ContactState::Open) continue;
-    force += (-t.normalTraction * t.normal + t.traction) * t.weight;
+    if (point.trial.valid) force += contact::slaveSideForce(point.trial);
   }
   return force;
 }

@@ -142,6 +142,12 @@ PointTrial trialOf(const PointEvaluation& e, const LawParameters& law) {
   return t;
 }
 
+// Force on the slave body: the opposite of the internal-force contribution.
+Eigen::Vector3d slaveSideForce(const PointTrial& t) {
+  if (t.state == ContactState::Open) return Eigen::Vector3d::Zero();
+  return (-t.normalTraction * t.normal + t.traction) * t.weight;
+}
+
 ContactPairRecord pairRecord(const std::string& name, const std::vector<PairPoint>& points) {
   ContactPairRecord r;
   r.name = name;
@@ -168,11 +174,7 @@ ContactPairRecord pairRecord(const std::string& name, const std::vector<PairPoin
     r.accumulatedSlip[i] = p.committed.accumulatedSlip;
     r.weight[i] = t.weight;
     r.edgeShare[i] = t.valid ? freeEdgeFactor(t.xi, p.layout.freeEdges) : 1.0;
-    // Force on the slave body: -(N n - T) w (the opposite of the internal-force contribution).
-    const Eigen::Vector3d force =
-        t.state == ContactState::Open
-            ? Eigen::Vector3d::Zero()
-            : Eigen::Vector3d((-t.normalTraction * t.normal + t.traction) * t.weight);
+    const Eigen::Vector3d force = slaveSideForce(t);
     r.totalForce += force;
     for (int a = 0; a < p.slaveCount; ++a) {
       auto [it, inserted] = nodalForce.try_emplace(p.slaveNodes[a], Eigen::Vector3d::Zero());

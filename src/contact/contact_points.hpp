@@ -112,5 +112,7 @@ PointTrial trialOf(const PointEvaluation& evaluation, const LawParameters& law);
 
 // The output record of the points' last evaluated (after commit: converged) state.
 ContactPairRecord pairRecord(const std::string& name, const std::vector<PairPoint>& points);
+// A point's contact force on the slave side, -(N n - T) w; zero while it is open.
+Eigen::Vector3d slaveSideForce(const PointTrial& trial);
 
 }  // namespace cc::contact

@@ -557,6 +557,7 @@ class PetscSolver final : public LinearSolver {
 
   void createVectors() {
     check(MatCreateVecs(matrix_, &solution_, &rhs_), "MatCreateVecs");
+    check(VecDuplicate(rhs_, &residual_), "VecDuplicate");
     if (distributed_)
       check(VecScatterCreateToAll(solution_, &toAll_, &all_), "VecScatterCreateToAll");
     if (embedded_) {
@@ -885,16 +886,12 @@ class PetscSolver final : public LinearSolver {
 
   // Whether the last direct solve, missing kDirectResidual, is as accurate as the tangent's
   // conditioning lets any backward-stable solve be (kDirectBackwardError) and still makes a
-  // Newton step (kDirectUsableResidual). Computed only after a miss.
+  // Newton step (kDirectUsableResidual). Computed only after a miss, from the residual that
+  // trueRelativeResidual left.
   bool solvedToRoundOff() {
     if (!(last_.relativeResidual <= kDirectUsableResidual)) return false;
-    Vec residual = nullptr;
-    check(VecDuplicate(rhs_, &residual), "VecDuplicate");
-    check(MatMult(matrix_, solution_, residual), "MatMult");
-    check(VecAYPX(residual, -1.0, rhs_), "VecAYPX");
     PetscReal r = 0, k = 0, x = 0, b = 0;
-    check(VecNorm(residual, NORM_INFINITY, &r), "VecNorm");
-    check(VecDestroy(&residual), "VecDestroy");
+    check(VecNorm(residual_, NORM_INFINITY, &r), "VecNorm");
     check(MatNorm(matrix_, NORM_INFINITY, &k), "MatNorm");
     check(VecNorm(solution_, NORM_INFINITY, &x), "VecNorm");
     check(VecNorm(rhs_, NORM_INFINITY, &b), "VecNorm");
@@ -902,15 +899,13 @@ class PetscSolver final : public LinearSolver {
     return scale > 0 && r <= directBackwardError_ * scale;
   }
 
+  // ||b - K x|| / ||b|| of the last solve; b - K x stays in residual_.
   double trueRelativeResidual() {
-    Vec residual = nullptr;
-    check(VecDuplicate(rhs_, &residual), "VecDuplicate");
-    check(MatMult(matrix_, solution_, residual), "MatMult");
-    check(VecAYPX(residual, -1.0, rhs_), "VecAYPX");
+    check(MatMult(matrix_, solution_, residual_), "MatMult");
+    check(VecAYPX(residual_, -1.0, rhs_), "VecAYPX");
     PetscReal r = 0, b = 0;
-    check(VecNorm(residual, NORM_2, &r), "VecNorm");
+    check(VecNorm(residual_, NORM_2, &r), "VecNorm");
     check(VecNorm(rhs_, NORM_2, &b), "VecNorm");
-    check(VecDestroy(&residual), "VecDestroy");
     return b > 0 ? r / b : r;
   }
 
@@ -919,6 +914,7 @@ class PetscSolver final : public LinearSolver {
     if (matrix_) MatDestroy(&matrix_);
     if (solution_) VecDestroy(&solution_);
     if (rhs_) VecDestroy(&rhs_);
+    if (residual_) VecDestroy(&residual_);
     if (coordinates_) VecDestroy(&coordinates_);
     if (toAll_) VecScatterDestroy(&toAll_);
     if (all_) VecDestroy(&all_);
@@ -970,6 +966,7 @@ class PetscSolver final : public LinearSolver {
   std::vector<PetscScalar> remoteSendValues_;
   Mat matrix_ = nullptr;
   Vec solution_ = nullptr, rhs_ = nullptr, coordinates_ = nullptr;
+  Vec residual_ = nullptr;      // b - K x of the last solve (trueRelativeResidual)
   VecScatter toAll_ = nullptr;  // several processes: the solution to every process
   Vec all_ = nullptr;
   KSP ksp_ = nullptr;
