@@ -57,6 +57,7 @@ struct SolveState {
   std::optional<int> determinantSign;
   std::vector<std::uint64_t> activeSets;  // signature of the active set, per iteration
   std::vector<double> residualHistory;    // ||rhs|| per iteration
+  std::vector<double> energyHistory;      // |du . rhs| per solved iteration, in norms' unit
   // A plain attempt whose remaining updates go through the line search: it stagnated near
   // convergence (newton_stall.hpp, stagnatesNearConvergence).
   bool damped = false;
@@ -418,10 +419,11 @@ std::optional<NewtonResult> Newton::detectStall(newton_detail::SolveState& s, in
     s.damped = true;  // the rest of this attempt through the line search
     return std::nullopt;
   }
-  if (const int best = stoppedImproving(s.residualHistory, s.norms.firstResidual); best > 0) {
+  if (const int best = stoppedImproving(s.residualHistory, s.energyHistory, s.norms.firstResidual);
+      best > 0) {
     return failed(iteration - 1, FailureKind::Diverged,
                   fmt::format("the residual has stayed above its value of iteration {} for {} "
-                              "iterations (no progress)",
+                              "iterations, and the energy norm above its lowest (no progress)",
                               best, kNoProgressIterations));
   }
   return std::nullopt;
@@ -534,6 +536,7 @@ void Newton::measureEnergy(newton_detail::SolveState& s, int iteration, const Ei
     if (std::abs(norms.energyScale) < 900) norms.energyScale = 0;  // normal range: no scaling
   }
   norms.energy = scaledEnergy(du, rhs, norms.energyScale);
+  s.energyHistory.push_back(norms.energy);
   if (iteration == 1) {
     // A reference energy from an earlier solve of this step is in unscaled units: used only
     // when this one is unscaled too.
