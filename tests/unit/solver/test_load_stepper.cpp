@@ -243,12 +243,18 @@ struct RestartPointObserver : RecordingObserver {
 
 // Runs `chain` over sharePhase(steps) into `observer`, which keeps what step `restartStep`
 // leaves for a restart.
-RunSummary runRecordingRestartPoint(MeasuringChain& chain, RestartPointObserver& observer,
-                                    int steps, int restartStep) {
+// Runs `chain` for `steps` steps and returns the observer holding the restart point after step
+// `restartStep`. The run must complete and still be stabilising there, or a restart from it
+// would test nothing of the stabilised stretch.
+RestartPointObserver stabilizedRestartPoint(MeasuringChain& chain, int steps, int restartStep) {
+  RestartPointObserver observer;
   LoadStepper stepper(chain, observer, {sharePhase(steps)});
   observer.stepper = &stepper;
   observer.restartStep = restartStep;
-  return stepper.run();
+  EXPECT_EQ(stepper.run().outcome, RunSummary::Outcome::Completed);
+  EXPECT_TRUE(observer.start.stepSize.stabilizing);
+  observer.stepper = nullptr;  // the stepper ends here
+  return observer;
 }
 
 // stabilize_on_failure_share=F: after every step that converged without stabilisation the
@@ -277,11 +283,8 @@ TEST(LoadStepper, AFailingStepIsStabilizedWithTheFactorOfTheLastQuasiStaticStep)
 // continues (StartState::viscousFactor, from the results file's restart data): step 4 of the
 // run above again with 0.1 x 12, step 5 without.
 TEST(LoadStepper, ARestartGoesOnWithTheMeasuredFailureFactor) {
-  RestartPointObserver full;
   MeasuringChain fullChain = foldingChain();
-  ASSERT_EQ(runRecordingRestartPoint(fullChain, full, 5, 3).outcome,
-            RunSummary::Outcome::Completed);
-  ASSERT_TRUE(full.start.stepSize.stabilizing);
+  const RestartPointObserver full = stabilizedRestartPoint(fullChain, 5, 3);
   EXPECT_EQ(full.start.viscousFactor, 0.1 * 12);
 
   MeasuringChain chain = foldingChain();
@@ -355,11 +358,8 @@ TEST(LoadStepper, AFactorFromTheStiffnessIsLoweredByTheStabilizedSteps) {
 // does (StartState::viscousFactorFromStiffness): step 2 is solved with 0.1 x 19 and lowers it to
 // 0.1 x 18. Without the flag the restarted run would keep 0.1 x 19 for the next failing step.
 TEST(LoadStepper, ARestartGoesOnLoweringAFactorFromTheStiffness) {
-  RestartPointObserver full;
   StiffChain fullChain = stiffFoldingChain();
-  ASSERT_EQ(runRecordingRestartPoint(fullChain, full, 4, 1).outcome,
-            RunSummary::Outcome::Completed);
-  ASSERT_TRUE(full.start.stepSize.stabilizing);
+  const RestartPointObserver full = stabilizedRestartPoint(fullChain, 4, 1);
   ASSERT_TRUE(full.start.viscousFactorFromStiffness);
   ASSERT_EQ(full.chosen.size(), 4u);
   EXPECT_DOUBLE_EQ(full.chosen[1], 0.1 * 18);
