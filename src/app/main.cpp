@@ -60,36 +60,23 @@ CLI::Validator wholeNumberFromOne() {
       "INT>=1");
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  // A closed pipe on stdout (`covcontact run DECK | head -1`) must not kill the run: writes then
-  // fail with EPIPE, which printOut reports once, and the run goes on to finish its results.
-  std::signal(SIGPIPE, SIG_IGN);
-  cc::app::watchStopSignals();
-  CLI::App cli{
-      "CovContact: 3D frictional contact at large deformations (covariant description, "
-      "Konyukhov & Schweizerhof 2005)"};
-  cli.footer(kExitCodes);
-  cli.require_subcommand(1);
-  cli.set_version_flag("--version", COVCONTACT_VERSION);
-
-  cc::app::RunOptions run;
-  auto* runCommand = cli.add_subcommand("run", "Solve the problem a deck describes");
-  runCommand->add_option("deck", run.deck, "Input deck")->required()->check(CLI::ExistingFile);
-  runCommand->add_option("-o,--output", run.output,
-                         "Results file (HDF5; .xdmf and .csv beside it)");
-  runCommand->add_option("--threads", run.threads, "Assembly threads (default: all cores)")
+// `covcontact run`: its options, into `options`.
+CLI::App* addRunCommand(CLI::App& cli, cc::app::RunOptions& options) {
+  auto* command = cli.add_subcommand("run", "Solve the problem a deck describes");
+  command->add_option("deck", options.deck, "Input deck")->required()->check(CLI::ExistingFile);
+  command->add_option("-o,--output", options.output,
+                      "Results file (HDF5; .xdmf and .csv beside it)");
+  command->add_option("--threads", options.threads, "Assembly threads (default: all cores)")
       ->check(wholeNumberFromOne());
-  runCommand->add_flag("-q,--quiet", run.quiet, "Print only the final summary");
-  runCommand->add_flag("--newton-log", run.newtonLog,
-                       "Print every Newton iteration: residual, energy, and the contact points "
-                       "that changed state or master segment since the previous iteration, "
-                       "the sign of the tangent's determinant where a direct solver "
-                       "factorized it (det +/-/0: a change marks a limit point passed); "
-                       "with an iterative linear solver, its Krylov iterations and tolerance");
-  runCommand
-      ->add_option("--check-tangent", run.checkTangent,
+  command->add_flag("-q,--quiet", options.quiet, "Print only the final summary");
+  command->add_flag("--newton-log", options.newtonLog,
+                    "Print every Newton iteration: residual, energy, and the contact points "
+                    "that changed state or master segment since the previous iteration, "
+                    "the sign of the tangent's determinant where a direct solver "
+                    "factorized it (det +/-/0: a change marks a limit point passed); "
+                    "with an iterative linear solver, its Krylov iterations and tolerance");
+  command
+      ->add_option("--check-tangent", options.checkTangent,
                    "STEP:ITERATION: compare the assembled tangent with central differences of "
                    "the residual at that iterate (printed to stderr). Use ITERATION >= 2 in "
                    "contact runs: at a step's first iterate some points use a law of that "
@@ -106,13 +93,13 @@ int main(int argc, char** argv) {
           },
           "STEP:ITERATION"));
   auto* restartOption =
-      runCommand
-          ->add_option("--restart", run.restartFile,
+      command
+          ->add_option("--restart", options.restartFile,
                        "Continue from a converged step stored in this results file (the "
                        "deck and mesh must be those of the run that wrote it)")
           ->check(CLI::ExistingFile);
-  runCommand
-      ->add_option("--dump-tangent", run.dumpTangent,
+  command
+      ->add_option("--dump-tangent", options.dumpTangent,
                    "Write the Newton system of step STEP, iteration ITER (STEP:ITER) in "
                    "PETSc binary format, with its rigid-body modes (solver/tangent_dump.hpp); "
                    "STEP:ITER:ATTEMPT takes it from a later attempt of the step (0 the first, "
@@ -123,61 +110,94 @@ int main(int argc, char** argv) {
             return std::string("expected ") + cc::app::kTangentDumpForm + ", got '" + value + "'";
           },
           "STEP:ITER[:ATTEMPT]"));
-  runCommand->add_option(
-      "--dump-dir", run.dumpDirectory,
+  command->add_option(
+      "--dump-dir", options.dumpDirectory,
       "Directory in which --dump-tangent writes <results stem>_tangent_STEP_ITER (a later "
       "attempt: _aATTEMPT appended; default: the results file's directory)");
-  runCommand
-      ->add_option("--solver", run.solver,
+  command
+      ->add_option("--solver", options.solver,
                    "Linear solver, overriding the deck's `solve solver=`: auto, cholmod, "
                    "umfpack, mumps, superlu_dist, amg or gamg")
       ->check(CLI::IsMember(cc::deck::choiceNames(cc::deck::linearSolverMethods())));
-  runCommand->add_flag("--cost", run.cost,
-                       "Print at the end one line `cost: {json}` with where the time went (per "
-                       "process under mpirun), peak memory and data moved between processes");
-  runCommand
-      ->add_option("--from-step", run.restartStep,
+  command->add_flag("--cost", options.cost,
+                    "Print at the end one line `cost: {json}` with where the time went (per "
+                    "process under mpirun), peak memory and data moved between processes");
+  command
+      ->add_option("--from-step", options.restartStep,
                    "Step of the --restart file to continue from (default: its last step)")
       ->check(wholeNumberFromOne())
       ->needs(restartOption);
+  return command;
+}
 
-  std::string checkDeck;
+// `covcontact check`: a deck to validate, or the keyword list.
+struct CheckOptions {
+  std::string deck;
   bool listKeywords = false;
-  auto* checkCommand = cli.add_subcommand("check", "Validate a deck and its mesh without solving");
-  checkCommand->add_option("deck", checkDeck, "Input deck");
-  checkCommand->add_flag("--keywords", listKeywords, "List every deck keyword and parameter");
+};
 
-  cc::app::CompareOptionsCli compare;
-  auto* compareCommand =
-      cli.add_subcommand("compare",
-                         "Compare a run's results with a reference results file: "
-                         "iteration counts exactly, chosen fields within tolerance");
-  compareCommand->add_option("run", compare.run, "Results file of the run")->required();
-  compareCommand->add_option("reference", compare.reference, "Reference results file")->required();
-  compareCommand->add_option("--rtol", compare.rtol, "Relative tolerance")->capture_default_str();
-  compareCommand->add_option("--atol", compare.atol,
-                             "Absolute tolerance (default: 1e-10 x field max)");
-  compareCommand
-      ->add_option("--fields", compare.fields,
+CLI::App* addCheckCommand(CLI::App& cli, CheckOptions& options) {
+  auto* command = cli.add_subcommand("check", "Validate a deck and its mesh without solving");
+  command->add_option("deck", options.deck, "Input deck");
+  command->add_flag("--keywords", options.listKeywords, "List every deck keyword and parameter");
+  return command;
+}
+
+CLI::App* addCompareCommand(CLI::App& cli, cc::app::CompareOptionsCli& options) {
+  auto* command = cli.add_subcommand("compare",
+                                     "Compare a run's results with a reference results file: "
+                                     "iteration counts exactly, chosen fields within tolerance");
+  command->add_option("run", options.run, "Results file of the run")->required();
+  command->add_option("reference", options.reference, "Reference results file")->required();
+  command->add_option("--rtol", options.rtol, "Relative tolerance")->capture_default_str();
+  command->add_option("--atol", options.atol, "Absolute tolerance (default: 1e-10 x field max)");
+  command
+      ->add_option("--fields", options.fields,
                    "Datasets per step to compare (default: set_reactions, "
                    "contact/*/total_force)")
       ->delimiter(',');
+  return command;
+}
 
-  cc::app::SolveDumpOptions solveDump;
-  auto* solveDumpCommand =
-      cli.add_subcommand("solve-dump",
-                         "Solve a system written by run --dump-tangent with one linear solver and "
-                         "print what it cost (one JSON line; scripts/solver_survey.py)");
-  solveDumpCommand->add_option("directory", solveDump.directory, "Dump directory")
+CLI::App* addSolveDumpCommand(CLI::App& cli, cc::app::SolveDumpOptions& options) {
+  auto* command = cli.add_subcommand(
+      "solve-dump",
+      "Solve a system written by run --dump-tangent with one linear solver and print what it "
+      "cost (one JSON line; scripts/solver_survey.py)");
+  command->add_option("directory", options.directory, "Dump directory")
       ->required()
       ->check(CLI::ExistingDirectory);
-  solveDumpCommand
-      ->add_option("--solver", solveDump.solver,
+  command
+      ->add_option("--solver", options.solver,
                    "auto, cholmod, umfpack, mumps, superlu_dist, amg or gamg")
       ->capture_default_str();
-  solveDumpCommand
-      ->add_option("--rtol", solveDump.rtol, "Relative residual for the iterative solvers")
+  command->add_option("--rtol", options.rtol, "Relative residual for the iterative solvers")
       ->capture_default_str();
+  return command;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // A closed pipe on stdout (`covcontact run DECK | head -1`) must not kill the run: writes then
+  // fail with EPIPE, which printOut reports once, and the run goes on to finish its results.
+  std::signal(SIGPIPE, SIG_IGN);
+  cc::app::watchStopSignals();
+  CLI::App cli{
+      "CovContact: 3D frictional contact at large deformations (covariant description, "
+      "Konyukhov & Schweizerhof 2005)"};
+  cli.footer(kExitCodes);
+  cli.require_subcommand(1);
+  cli.set_version_flag("--version", COVCONTACT_VERSION);
+
+  cc::app::RunOptions run;
+  CLI::App* runCommand = addRunCommand(cli, run);
+  CheckOptions check;
+  CLI::App* checkCommand = addCheckCommand(cli, check);
+  cc::app::CompareOptionsCli compare;
+  addCompareCommand(cli, compare);
+  cc::app::SolveDumpOptions solveDump;
+  CLI::App* solveDumpCommand = addSolveDumpCommand(cli, solveDump);
 
   try {
     cli.parse(argc, argv);
@@ -217,11 +237,11 @@ int main(int argc, char** argv) {
     if (cc::launchedProcesses() > 1 && cc::launchedRank() != 0) return cc::kExitOk;
     if (*solveDumpCommand) return cc::app::solveDumpCommand(solveDump);
     if (*checkCommand) {
-      if (checkDeck.empty() && !listKeywords) {
+      if (check.deck.empty() && !check.listKeywords) {
         std::cerr << "covcontact check: give a deck (or --keywords)\n";
         return cc::kExitUsage;
       }
-      return cc::app::checkCommand(checkDeck, listKeywords);
+      return cc::app::checkCommand(check.deck, check.listKeywords);
     }
     return cc::app::compareCommand(compare);
   } catch (const std::exception& error) {
