@@ -213,6 +213,14 @@ class ContactPair : public Contribution {
   // aug_grow: raises the penalties when the updates (ratio: this one over the normal force)
   // stall below the automatic penalty; true if it did.
   bool raisePenaltyIfStalled(double ratio);
+  // augment()'s parts: the weighted multiplier update against the normal contact force, and the
+  // Uzawa image of the multipliers combined by Anderson acceleration.
+  struct AugmentationMeasure {
+    double force = 0;   // sum w |N|
+    double update = 0;  // sum of the weighted multiplier updates
+  };
+  AugmentationMeasure measureAugmentation() const;
+  void updateMultipliers();
   // integration=segments (contact_pair_segments.cpp): the points of the segmentation at the
   // converged configuration of the step's start, each with the history of the nearest old point
   // on its slave segment, re-projected there.

@@ -26,28 +26,7 @@ namespace cc::contact {
 
 ContactPair::Augmentation ContactPair::augment() {
   if (!config_.augmented) return Augmentation::Converged;
-  // Integrated over the surface (weights w): the update of the contact force against the
-  // contact force. A rule on the largest point update stalled at the corners of a pressed
-  // block, where the pressure is singular and its multiplier converges slowest. An update is
-  // eps |g| (eps |Delta rho_t| under stick); weighting it by eps_ref / eps where eps is below
-  // the automatic penalty eps_ref bounds the penetration left by aug_tol |N| / max(eps,
-  // eps_ref): the same bound for every softer penalty, so that the results do not depend on it.
-  const double normalWeight = std::max(1.0, config_.referencePenalty / config_.law.penaltyNormal);
-  const double tangentialWeight =
-      config_.law.penaltyTangential > 0
-          ? std::max(1.0, config_.referencePenalty / config_.law.penaltyTangential)
-          : 1.0;
-  double force = 0, update = 0;
-  for (const PairPoint& point : points_) {
-    const PointTrial& t = point.trial;
-    if (!t.valid) continue;
-    const bool active = t.state != ContactState::Open;
-    const double normal = active ? t.normalTraction : 0.0;
-    force += t.weight * std::abs(normal);
-    update += normalWeight * t.weight * std::abs(normal - point.multiplierNormal);
-    if (t.state == ContactState::Stick)
-      update += tangentialWeight * t.weight * (t.traction - t.tractionBase).norm();
-  }
+  const auto [force, update] = measureAugmentation();
   if (update <= config_.augmentationTolerance * force) return Augmentation::Converged;
   if (augmentations_ >= config_.maxAugmentations) {
     lastAugmentationMessage_ = fmt::format(
@@ -60,14 +39,46 @@ ContactPair::Augmentation ContactPair::augment() {
     ++augmentations_;
     return Augmentation::Updated;  // solved again with the same multipliers, stiffer penalty
   }
-  // The Uzawa image of the multipliers (4 per point: lambda_N and the augmentation A), then
-  // Anderson's combination of the last images (aug_depth; 0 keeps plain Uzawa). Lambda_T <- T
-  // at sliding points as well: a point that kept the augmentation of its last sticking update
-  // started its next trial far inside or outside the cone, and the points where the block turns
-  // from stick to slip flipped at every update; which of them flipped was decided by round-off
-  // (the soft block of tests/regression/contact/check_augmented_kernels.py: 5 steps or 32 steps
-  // with 3 cut-backs by the BLAS kernels). With the slip traction as Lambda_T a point that
-  // sticks again starts on the cone.
+  updateMultipliers();
+  ++augmentations_;
+  return Augmentation::Updated;
+}
+
+// Integrated over the surface (weights w): the update of the contact force against the contact
+// force. A rule on the largest point update stalled at the corners of a pressed block, where the
+// pressure is singular and its multiplier converges slowest. An update is eps |g| (eps |Delta
+// rho_t| under stick); weighting it by eps_ref / eps where eps is below the automatic penalty
+// eps_ref bounds the penetration left by aug_tol |N| / max(eps, eps_ref): the same bound for
+// every softer penalty, so that the results do not depend on it.
+ContactPair::AugmentationMeasure ContactPair::measureAugmentation() const {
+  const double normalWeight = std::max(1.0, config_.referencePenalty / config_.law.penaltyNormal);
+  const double tangentialWeight =
+      config_.law.penaltyTangential > 0
+          ? std::max(1.0, config_.referencePenalty / config_.law.penaltyTangential)
+          : 1.0;
+  AugmentationMeasure measure;
+  for (const PairPoint& point : points_) {
+    const PointTrial& t = point.trial;
+    if (!t.valid) continue;
+    const bool active = t.state != ContactState::Open;
+    const double normal = active ? t.normalTraction : 0.0;
+    measure.force += t.weight * std::abs(normal);
+    measure.update += normalWeight * t.weight * std::abs(normal - point.multiplierNormal);
+    if (t.state == ContactState::Stick)
+      measure.update += tangentialWeight * t.weight * (t.traction - t.tractionBase).norm();
+  }
+  return measure;
+}
+
+// The Uzawa image of the multipliers (4 per point: lambda_N and the augmentation A), then
+// Anderson's combination of the last images (aug_depth; 0 keeps plain Uzawa). Lambda_T <- T at
+// sliding points as well: a point that kept the augmentation of its last sticking update started
+// its next trial far inside or outside the cone, and the points where the block turns from stick
+// to slip flipped at every update; which of them flipped was decided by round-off (the soft block
+// of tests/regression/contact/check_augmented_kernels.py: 5 steps or 32 steps with 3 cut-backs by
+// the BLAS kernels). With the slip traction as Lambda_T a point that sticks again starts on the
+// cone.
+void ContactPair::updateMultipliers() {
   const std::size_t count = points_.size();
   Eigen::VectorXd current(4 * count), image(4 * count), weights(4 * count);
   for (std::size_t k = 0; k < count; ++k) {
@@ -91,8 +102,6 @@ ContactPair::Augmentation ContactPair::augment() {
     point.multiplierNormal = std::min(0.0, source[4 * k]);
     point.tractionAugmentation = source.segment<3>(4 * k + 1);
   }
-  ++augmentations_;
-  return Augmentation::Updated;
 }
 
 // A stall of the updates (aug_grow): plain Uzawa contracts like k / (k + eps) per update for a
