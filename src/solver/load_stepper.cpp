@@ -179,68 +179,14 @@ bool LoadStepper::runPhase(const PhaseSpec& givenPhase, double phaseStart, Phase
   failureFactorFromStiffness_ = false;
   stiffnessFactorOrigin_.clear();
   double position = std::max(0.0, snapped((run.time - phaseStart) / phase.dt));
-  if (resumeStepSize_ && position < phase.steps) {
-    // A restart inside this phase continues with the stored step size, chosen factor and
-    // stabilisation on failure; at a phase start the phase begins afresh, as it would have.
-    resumeStepSize_ = false;
-    if (position > 0) {
-      StepSize resumed = nextStepSize_;
-      if (phase.newton.stabilizationOnFailureShare > 0 && resumeViscousFactor_ > 0) {
-        phase.newton.stabilizationOnFailure = chosenViscousFactor_ = resumeViscousFactor_;
-        if (resumeFactorFromStiffness_) {
-          failureFactorFromStiffness_ = true;
-          stiffnessFactorOrigin_ = "the stiffness (restart data)";
-        }
-      }
-      // A deck changed for the restart may have dropped stabilize_on_failure from the phase.
-      if (!(phase.newton.stabilizationOnFailure > 0)) {
-        resumed.stabilizing = false;
-        resumed.stabilizedEasySteps = 0;
-      }
-      static_cast<StepSize&>(control) = resumed;
-      if (phase.newton.stabilizationShare > 0 && resumeViscousFactor_ > 0) {
-        phase.newton.stabilization = chosenViscousFactor_ = resumeViscousFactor_;
-      }
-    }
-  }
+  resumePhase(phase, position, control);
   while (position < phase.steps) {
     const double target = snapped(std::min(position + control.fraction, std::floor(position) + 1));
     const double targetTime = phaseStart + target * phase.dt;
     NewtonStep step{run.step + 1, control.attempts++, targetTime, run.time};
     step.predictedIncrement = predictedIncrement(phase, targetTime, run);
-    // The re-solves of augmentStep use the same.
-    NewtonSpec solvedWith = attemptSpec(phase, control.stabilizing);
-    NewtonResult result = newton_->solve(step, solvedWith, run.displacement);
-    if (lineSearchMayHelp(result) && !phase.newton.lineSearch) {
-      // Tried on the same step before the step is cut back (lineSearchMayHelp).
-      ++summary_.lineSearchRetries;
-      const NewtonStep retry = retryStep(step, result, (target - position) * phase.dt,
-                                         "retrying the step with line search: ", control, run);
-      solvedWith.lineSearch = true;
-      result = newton_->solve(retry, solvedWith, run.displacement);
-    }
-    if (result.status == NewtonResult::Status::Failed && result.failure == FailureKind::Diverged &&
-        phase.newton.penaltyContinuation && problem_.stiffestPenaltyRatio() > kContinuationRatio) {
-      // A stiff penalty whose step fails with and without line search fails the same way at
-      // every step size (its convergence region shrinks with 1 / eps, not with dt): the step is
-      // approached from the automatic penalty before it is cut back.
-      ++summary_.continuationRetries;
-      const NewtonStep retry =
-          retryStep(step, result, (target - position) * phase.dt,
-                    "retrying the step by penalty continuation: ", control, run);
-      // Its solves without the line-search retry's line search (unless the deck has it): plain
-      // Newton ends a period-2 cycle after two periods where the line search runs 30 iterations
-      // (block at 1e3 eps_ref: 63 against 108 discarded iterations, fifteenth session).
-      result = solveByPenaltyContinuation(attemptSpec(phase, control.stabilizing), retry, run);
-    }
-    if (result.status == NewtonResult::Status::Failed && !control.stabilizing &&
-        !observer_.stopRequested() && failureFactorKnown(phase)) {
-      result = solveStabilized(phase, step, result, (target - position) * phase.dt, solvedWith,
-                               control, run);
-    }
-    if (result.status == NewtonResult::Status::Converged) {
-      result = augmentStep(solvedWith, step, result, run);
-    }
+    const double dt = (target - position) * phase.dt;
+    const NewtonResult result = solveStep(phase, step, dt, control, run);
     if (result.status == NewtonResult::Status::Converged) {
       position = target;
       // Before acceptStep: the restart record written there carries the chosen factor.
@@ -249,11 +195,72 @@ bool LoadStepper::runPhase(const PhaseSpec& givenPhase, double phaseStart, Phase
       if (!acceptStep(phase, result, targetTime, position >= phase.steps, control, run)) {
         return false;
       }
-    } else if (!rejectStep(phase, result, step, (target - position) * phase.dt, control, run)) {
+    } else if (!rejectStep(phase, result, step, dt, control, run)) {
       return false;
     }
   }
   return true;
+}
+
+// A restart inside this phase continues with the stored step size, chosen factor and
+// stabilisation on failure; at a phase start the phase begins afresh, as it would have.
+void LoadStepper::resumePhase(PhaseSpec& phase, double position, StepControl& control) {
+  if (!resumeStepSize_ || position >= phase.steps) return;
+  resumeStepSize_ = false;
+  if (position <= 0) return;
+  StepSize resumed = nextStepSize_;
+  if (phase.newton.stabilizationOnFailureShare > 0 && resumeViscousFactor_ > 0) {
+    phase.newton.stabilizationOnFailure = chosenViscousFactor_ = resumeViscousFactor_;
+    if (resumeFactorFromStiffness_) {
+      failureFactorFromStiffness_ = true;
+      stiffnessFactorOrigin_ = "the stiffness (restart data)";
+    }
+  }
+  // A deck changed for the restart may have dropped stabilize_on_failure from the phase.
+  if (!(phase.newton.stabilizationOnFailure > 0)) {
+    resumed.stabilizing = false;
+    resumed.stabilizedEasySteps = 0;
+  }
+  static_cast<StepSize&>(control) = resumed;
+  if (phase.newton.stabilizationShare > 0 && resumeViscousFactor_ > 0) {
+    phase.newton.stabilization = chosenViscousFactor_ = resumeViscousFactor_;
+  }
+}
+
+NewtonResult LoadStepper::solveStep(PhaseSpec& phase, const NewtonStep& step, double dt,
+                                    StepControl& control, PhaseRun& run) {
+  NewtonSpec solvedWith = attemptSpec(phase, control.stabilizing);
+  NewtonResult result = newton_->solve(step, solvedWith, run.displacement);
+  if (lineSearchMayHelp(result) && !phase.newton.lineSearch) {
+    // Tried on the same step before the step is cut back (lineSearchMayHelp).
+    ++summary_.lineSearchRetries;
+    const NewtonStep retry =
+        retryStep(step, result, dt, "retrying the step with line search: ", control, run);
+    solvedWith.lineSearch = true;
+    result = newton_->solve(retry, solvedWith, run.displacement);
+  }
+  if (result.status == NewtonResult::Status::Failed && result.failure == FailureKind::Diverged &&
+      phase.newton.penaltyContinuation && problem_.stiffestPenaltyRatio() > kContinuationRatio) {
+    // A stiff penalty whose step fails with and without line search fails the same way at every
+    // step size (its convergence region shrinks with 1 / eps, not with dt): the step is
+    // approached from the automatic penalty before it is cut back.
+    ++summary_.continuationRetries;
+    const NewtonStep retry =
+        retryStep(step, result, dt, "retrying the step by penalty continuation: ", control, run);
+    // Its solves without the line-search retry's line search (unless the deck has it): plain
+    // Newton ends a period-2 cycle after two periods where the line search runs 30 iterations
+    // (block at 1e3 eps_ref: 63 against 108 discarded iterations, fifteenth session).
+    result = solveByPenaltyContinuation(attemptSpec(phase, control.stabilizing), retry, run);
+  }
+  if (result.status == NewtonResult::Status::Failed && !control.stabilizing &&
+      !observer_.stopRequested() && failureFactorKnown(phase)) {
+    result = solveStabilized(phase, step, result, dt, solvedWith, control, run);
+  }
+  // The re-solves of augmentStep use the attempt's settings.
+  if (result.status == NewtonResult::Status::Converged) {
+    result = augmentStep(solvedWith, step, result, run);
+  }
+  return result;
 }
 
 // A step that failed without stabilisation, solved again at the same step size with the phase's

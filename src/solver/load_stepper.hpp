@@ -110,6 +110,13 @@ class LoadStepper {
                            PhaseRun& run);
   // Each returns false when the run stops (summary_ says why).
   bool runPhase(const PhaseSpec& givenPhase, double phaseStart, PhaseRun& run);
+  // A restart inside the phase: the stored step size, chosen factor and stabilisation on failure.
+  void resumePhase(PhaseSpec& phase, double position, StepControl& control);
+  // One attempt at a step of size dt and the retries a failed one gets before it is cut back
+  // (line search, penalty continuation, stabilisation); a converged one is augmented with the
+  // Newton settings the last retry left.
+  NewtonResult solveStep(PhaseSpec& phase, const NewtonStep& step, double dt, StepControl& control,
+                         PhaseRun& run);
   // NewtonSpec::stabilizationOnFailure: the failed step again, stabilised (load_stepper.cpp).
   NewtonResult solveStabilized(const PhaseSpec& phase, const NewtonStep& step,
                                const NewtonResult& failed, double dt, NewtonSpec& solvedWith,
