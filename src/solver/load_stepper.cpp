@@ -176,8 +176,7 @@ bool LoadStepper::runPhase(const PhaseSpec& givenPhase, double phaseStart, Phase
   StepControl control;
   chosenViscousFactor_ = 0;
   measuredFailureStep_ = 0;
-  failureFactorFromStiffness_ = false;
-  stiffnessFactorOrigin_.clear();
+  stiffnessFactorOrigin_.reset();
   double position = std::max(0.0, snapped((run.time - phaseStart) / phase.dt));
   resumePhase(phase, position, control);
   while (position < phase.steps) {
@@ -212,7 +211,6 @@ void LoadStepper::resumePhase(PhaseSpec& phase, double position, StepControl& co
   if (phase.newton.stabilizationOnFailureShare > 0 && resumeViscousFactor_ > 0) {
     phase.newton.stabilizationOnFailure = chosenViscousFactor_ = resumeViscousFactor_;
     if (resumeFactorFromStiffness_) {
-      failureFactorFromStiffness_ = true;
       stiffnessFactorOrigin_ = "the stiffness (restart data)";
     }
   }
@@ -279,8 +277,8 @@ NewtonResult LoadStepper::solveStabilized(const PhaseSpec& phase, const NewtonSt
   const double factor = phase.newton.stabilizationOnFailure;
   const double share = phase.newton.stabilizationOnFailureShare;
   const std::string origin = measuredFailureStep_ > 0 ? fmt::format("step {}", measuredFailureStep_)
-                             : failureFactorFromStiffness_ ? stiffnessFactorOrigin_
-                                                           : std::string("the restart data");
+                             : stiffnessFactorOrigin_ ? *stiffnessFactorOrigin_
+                                                      : std::string("the restart data");
   const std::string given = share > 0
                                 ? fmt::format("stabilize_on_failure_share={:g}: C = {:.4g} from {}",
                                               share, factor, origin)
@@ -366,7 +364,6 @@ bool LoadStepper::failureFactorKnown(PhaseSpec& phase) {
       problem_.viscousFactorForStiffness(newton.stabilizationOnFailureShare, phase.dt);
   if (!(chosen.factor > 0) || !std::isfinite(chosen.factor)) return false;
   newton.stabilizationOnFailure = chosenViscousFactor_ = chosen.factor;
-  failureFactorFromStiffness_ = true;
   stiffnessFactorOrigin_ = chosen.origin + " at dt = " + fmt::format("{:g}", phase.dt) +
                            ", no step having converged without it yet";
   return true;

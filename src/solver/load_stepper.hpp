@@ -9,6 +9,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -86,7 +87,7 @@ class LoadStepper {
   // Whether that factor came from the stiffness and stabilised steps may still lower it
   // (stabilize_on_failure_share before any step converged without stabilisation).
   bool chosenFactorFromStiffness() const {
-    return measuredFailureStep_ == 0 && failureFactorFromStiffness_;
+    return measuredFailureStep_ == 0 && stiffnessFactorOrigin_.has_value();
   }
   // Diagnostics: see Newton::setTangentCheck.
   void setTangentCheck(int step, int iteration) { tangentCheck_ = {step, iteration}; }
@@ -150,9 +151,9 @@ class LoadStepper {
   double resumeViscousFactor_ = 0;          // a restart's chosen factor, for the same phase
   bool resumeFactorFromStiffness_ = false;  // and whether it came from the stiffness
   double chosenViscousFactor_ = 0;
-  int measuredFailureStep_ = 0;              // the step measureFailureFactor last measured
-  bool failureFactorFromStiffness_ = false;  // the failure factor came from the stiffness,
-  std::string stiffnessFactorOrigin_;        // as this says (for the run's messages)
+  int measuredFailureStep_ = 0;  // the step measureFailureFactor last measured
+  // Set when the failure factor came from the stiffness: how (for the run's messages).
+  std::optional<std::string> stiffnessFactorOrigin_;
   std::pair<int, int> tangentCheck_{-1, -1};
   const PhaseRun* activeRun_ = nullptr;  // during run()
 };
