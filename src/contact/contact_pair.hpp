@@ -186,7 +186,15 @@ class ContactPair : public Contribution {
   ContactPair(ContactPairConfig config, const FaceSet& master, std::vector<PairPoint> points);
   const MasterSurface& master() const { return tracker_.master(); }
   void buildItem(PairPoint& point) const;
-  void forgetChangesInAttempt();                                // contact_pair_diagnostics.cpp
+  void forgetChangesInAttempt();  // contact_pair_diagnostics.cpp
+  // contact_pair_history.cpp: the parts of importHistory.
+  struct HistoryLayout {
+    bool legacy = false;           // written before the augmentation rows
+    bool withGaps = false;         // holds the gap history
+    bool withPenetration = false;  // holds the penetration watch
+  };
+  HistoryLayout historyLayout(const Eigen::MatrixXd& table) const;
+  void importPointHistory(int i, const Eigen::Ref<const Eigen::VectorXd>& column, bool withGaps);
   void importAugmentation(const Eigen::MatrixXd& table);        // contact_pair_history.cpp
   void importDeepestPenetration(const Eigen::MatrixXd& table);  // contact_pair_history.cpp
   // The search tracking of NTS/STS points; rebuilds the items of the points that moved.

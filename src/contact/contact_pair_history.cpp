@@ -95,6 +95,22 @@ Eigen::MatrixXd ContactPair::exportHistory() const {
   return table;
 }
 
+// Which rows a stored history table holds: tables written by earlier versions lack the rows
+// added since (HistoryRow). Throws std::invalid_argument for a table that fits no version.
+ContactPair::HistoryLayout ContactPair::historyLayout(const Eigen::MatrixXd& table) const {
+  HistoryLayout layout;
+  layout.legacy = table.rows() == kLegacyRowCount;
+  layout.withPenetration = table.rows() == kHistoryRows;
+  layout.withGaps = layout.withPenetration || table.rows() == kRowCountBeforePenetration;
+  if ((!layout.withGaps && !layout.legacy && table.rows() != kRowCountBeforeGaps) ||
+      table.cols() != pointCount()) {
+    throw std::invalid_argument(fmt::format(
+        "contact pair '{}': history table is {} x {}, expected {} x {} (one column per point)",
+        config_.name, table.rows(), table.cols(), kHistoryRows, pointCount()));
+  }
+  return layout;
+}
+
 void ContactPair::importHistory(const Eigen::MatrixXd& table) {
   if (config_.segmentIntegration) {
     // The points of integration=segments depend on the configuration they were segmented at,
@@ -104,57 +120,52 @@ void ContactPair::importHistory(const Eigen::MatrixXd& table) {
         "are rebuilt every step); rerun it from the start",
         config_.name));
   }
-  const bool legacy = table.rows() == kLegacyRowCount;
-  const bool withPenetration = table.rows() == kHistoryRows;
-  const bool withGaps = withPenetration || table.rows() == kRowCountBeforePenetration;
-  if ((!withGaps && !legacy && table.rows() != kRowCountBeforeGaps) ||
-      table.cols() != pointCount()) {
-    throw std::invalid_argument(fmt::format(
-        "contact pair '{}': history table is {} x {}, expected {} x {} (one column per point)",
-        config_.name, table.rows(), table.cols(), kHistoryRows, pointCount()));
-  }
-  if (!legacy) importAugmentation(table);
-  const bool segmentBased = searchesMasterSegments(config_.kind);
-  for (int i = 0; i < pointCount(); ++i) {
-    const auto column = table.col(i);
-    for (int row : {kSegment, kSearchSegment}) {
-      const double segment = column[row];
-      if (segmentBased && (segment != static_cast<int>(segment) || segment < -1 ||
-                           segment >= master().segmentCount())) {
-        throw std::invalid_argument(
-            fmt::format("contact pair '{}', point {}: master segment {} does not exist",
-                        config_.name, i, segment));
-      }
-    }
-    PairPoint& point = points_[i];
-    PointHistory& h = point.committed;
-    h.projected = column[kProjected] != 0;
-    h.segment = static_cast<int>(column[kSegment]);
-    h.xi = column.segment<2>(kXi);
-    h.traction = column.segment<3>(kTraction);
-    h.tractionCovariant = column.segment<2>(kTractionCovariant);
-    h.masterPoint = column.segment<3>(kMasterPoint);
-    h.surfaceOffset = column.segment<3>(kSurfaceOffset);
-    h.state = stateFrom(column[kState], config_.name, i);
-    h.accumulatedSlip = column[kAccumulatedSlip];
-    h.gap = withGaps ? column[kGap] : kNoGap;
-    h.previousGap = withGaps ? column[kPreviousGap] : kNoGap;
-    if (segmentBased) point.segment = static_cast<int>(column[kSearchSegment]);
-    point.xi = column.segment<2>(kSearchXi);
-    point.committedSearchSegment = point.segment;
-    point.committedSearchXi = point.xi;
-    point.segmentChangesInStep = 0;
-    point.trial = PointTrial{};
-    buildItem(point);
-  }
-  gapTime_ = withGaps && pointCount() > 0 ? table(kGapTime, 0) : 0.0;
-  previousGapTime_ = withGaps && pointCount() > 0 ? table(kPreviousGapTime, 0) : 0.0;
-  importDeepestPenetration(withPenetration ? table : Eigen::MatrixXd());
+  const HistoryLayout layout = historyLayout(table);
+  if (!layout.legacy) importAugmentation(table);
+  for (int i = 0; i < pointCount(); ++i) importPointHistory(i, table.col(i), layout.withGaps);
+  gapTime_ = layout.withGaps && pointCount() > 0 ? table(kGapTime, 0) : 0.0;
+  previousGapTime_ = layout.withGaps && pointCount() > 0 ? table(kPreviousGapTime, 0) : 0.0;
+  importDeepestPenetration(layout.withPenetration ? table : Eigen::MatrixXd());
   // The history replaces the initial projection (Table 1, step 1), and the search grid and the
   // item topology follow the restored segments.
   historyInitialized_ = true;
   tracker_.invalidateGrid();
   ++topologyVersion_;
+}
+
+// Point i's committed history and search state from its column; its trial state starts afresh.
+void ContactPair::importPointHistory(int i, const Eigen::Ref<const Eigen::VectorXd>& column,
+                                     bool withGaps) {
+  const bool segmentBased = searchesMasterSegments(config_.kind);
+  for (int row : {kSegment, kSearchSegment}) {
+    const double segment = column[row];
+    if (segmentBased && (segment != static_cast<int>(segment) || segment < -1 ||
+                         segment >= master().segmentCount())) {
+      throw std::invalid_argument(
+          fmt::format("contact pair '{}', point {}: master segment {} does not exist", config_.name,
+                      i, segment));
+    }
+  }
+  PairPoint& point = points_[i];
+  PointHistory& h = point.committed;
+  h.projected = column[kProjected] != 0;
+  h.segment = static_cast<int>(column[kSegment]);
+  h.xi = column.segment<2>(kXi);
+  h.traction = column.segment<3>(kTraction);
+  h.tractionCovariant = column.segment<2>(kTractionCovariant);
+  h.masterPoint = column.segment<3>(kMasterPoint);
+  h.surfaceOffset = column.segment<3>(kSurfaceOffset);
+  h.state = stateFrom(column[kState], config_.name, i);
+  h.accumulatedSlip = column[kAccumulatedSlip];
+  h.gap = withGaps ? column[kGap] : kNoGap;
+  h.previousGap = withGaps ? column[kPreviousGap] : kNoGap;
+  if (segmentBased) point.segment = static_cast<int>(column[kSearchSegment]);
+  point.xi = column.segment<2>(kSearchXi);
+  point.committedSearchSegment = point.segment;
+  point.committedSearchXi = point.xi;
+  point.segmentChangesInStep = 0;
+  point.trial = PointTrial{};
+  buildItem(point);
 }
 
 // The rows of the penetration watch (an empty table: none stored, the watch starts afresh).

@@ -2,10 +2,13 @@
 // segments, history commit/restore, and the continuity of the tangential traction when a point
 // slides across master segment boundaries (parallel translation, eq. (51) + (47), against the
 // naive convective update, eq. (75)).
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "contact/contact_pair.hpp"
@@ -482,6 +485,39 @@ TEST(ContactPair, AHeldSlidingPointContinuesTheClosedBranchFrictionIncluded) {
     EXPECT_GT(tangential, 0.5 * friction * 1e3 * delta * 4.0);  // friction acts: mu eps_N g A
     EXPECT_LT((held + closed).norm(), 1e-12 * closed.norm());
   }
+}
+
+// A restart table that does not fit the pair is refused with a message naming the pair and
+// what was expected, before the run continues from it; a table that fits restores the pair's
+// force exactly (the restart tests above).
+TEST(ContactPair, RefusesAHistoryTableThatDoesNotFitThePair) {
+  TwoSurfaces s = overlappingSquares(2e-3);
+  auto pair = ContactPair::segmentToSegment(config(PointKind::SegmentToSegment), s.master, s.slave);
+  (void)assembleForce(*pair, s.mesh.coordinates, s.mesh.coordinates, 1);
+  pair->commitStep();
+  const Eigen::MatrixXd table = pair->exportHistory();
+  auto messageOf = [&](const Eigen::MatrixXd& stored) {
+    auto restarted =
+        ContactPair::segmentToSegment(config(PointKind::SegmentToSegment), s.master, s.slave);
+    try {
+      restarted->importHistory(stored);
+    } catch (const std::invalid_argument& error) {
+      return std::string(error.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_EQ(messageOf(table), "accepted");
+  const Eigen::MatrixXd missingPoint = table.leftCols(table.cols() - 1);
+  EXPECT_NE(messageOf(missingPoint)
+                .find(fmt::format("history table is {} x {}, expected {} x {}", table.rows(),
+                                  table.cols() - 1, table.rows(), table.cols())),
+            std::string::npos)
+      << messageOf(missingPoint);
+  Eigen::MatrixXd beyondTheMaster = table;
+  beyondTheMaster(1, 2) = 99;  // the committed segment of point 2 (HistoryRow kSegment)
+  EXPECT_NE(messageOf(beyondTheMaster).find("point 2: master segment 99 does not exist"),
+            std::string::npos)
+      << messageOf(beyondTheMaster);
 }
 
 }  // namespace
