@@ -187,7 +187,7 @@ class ContactPair : public Contribution {
   const MasterSurface& master() const { return tracker_.master(); }
   void buildItem(PairPoint& point) const;
   void forgetChangesInAttempt();  // contact_pair_diagnostics.cpp
-  // contact_pair_history.cpp: the parts of importHistory.
+  // The parts of importHistory (contact_pair_history.cpp).
   struct HistoryLayout {
     bool legacy = false;           // written before the augmentation rows
     bool withGaps = false;         // holds the gap history
@@ -195,8 +195,8 @@ class ContactPair : public Contribution {
   };
   HistoryLayout historyLayout(const Eigen::MatrixXd& table) const;
   void importPointHistory(int i, const Eigen::Ref<const Eigen::VectorXd>& column, bool withGaps);
-  void importAugmentation(const Eigen::MatrixXd& table);        // contact_pair_history.cpp
-  void importDeepestPenetration(const Eigen::MatrixXd& table);  // contact_pair_history.cpp
+  void importAugmentation(const Eigen::MatrixXd& table);
+  void importDeepestPenetration(const Eigen::MatrixXd& table);
   // The search tracking of NTS/STS points; rebuilds the items of the points that moved.
   LocalStatus searchSegments(const Eigen::Matrix3Xd& x, double time);
   // Table 1, step 1: the projections in the initial configuration start the history.
