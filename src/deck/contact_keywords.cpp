@@ -128,87 +128,108 @@ void setTangentParts(const ParsedLine& line, const std::string& context, Contact
 
 }  // namespace
 
-void handleContact(const ParsedLine& line, DeckState& state) {
-  ContactSpec contact;
-  contact.kind = choiceValue(contactKinds(), line.positional(0).text);
-  contact.name = line.given("name") ? line.text("name")
-                                    : fmt::format("pair{}", state.spec.contacts.size() + 1);
-  // Messages name the pair even when its name is the default one.
-  const std::string context = fmt::format("contact '{}'", contact.name);
-  auto fail = [&](const SourceLocation& where, const std::string& message) {
+namespace {
+
+// A contact line's errors name the pair, also when its name is the default one.
+struct PairLine {
+  const ParsedLine& line;
+  std::string context;  // "contact 'NAME'"
+  [[noreturn]] void fail(const SourceLocation& where, const std::string& message) const {
     throw InputError(where, context + ": " + message);
-  };
+  }
+  // A parameter given where `applies` is false fails with `why`.
+  void refuseUnless(bool applies, const char* name, const std::string& why) const {
+    if (!applies && line.given(name)) fail(line.value(name).where, why);
+  }
+};
+
+// The pair's name (unique in the deck) and its two surfaces (different ones).
+void setPairSurfaces(const PairLine& pair, const DeckState& state, ContactSpec& contact) {
+  const ParsedLine& line = pair.line;
   for (const ContactSpec& earlier : state.spec.contacts) {
     if (earlier.name == contact.name) {
-      fail(line.given("name") ? line.value("name").where : line.where(),
-           fmt::format("duplicate contact pair name '{}' (first at {})", contact.name,
-                       earlier.where.str()));
+      pair.fail(line.given("name") ? line.value("name").where : line.where(),
+                fmt::format("duplicate contact pair name '{}' (first at {})", contact.name,
+                            earlier.where.str()));
     }
   }
   contact.master = line.text("master");
   contact.slave = line.text("slave");
   if (contact.master == contact.slave) {
-    fail(line.value("slave").where,
-         fmt::format("master and slave are both '{}'; a pair needs two different surfaces",
-                     contact.slave));
+    pair.fail(line.value("slave").where,
+              fmt::format("master and slave are both '{}'; a pair needs two different surfaces",
+                          contact.slave));
   }
+}
+
+// Penalties, friction and the enforcement (penalty or augmented Lagrangian) with its options.
+void setEnforcement(const PairLine& pair, ContactSpec& contact) {
+  const ParsedLine& line = pair.line;
   // An omitted eps_n (eps_t when mu > 0) is chosen from the adjacent elements' stiffness when
   // the model is built (model/automatic_penalty.cpp); 0 marks it as automatic.
   if (line.given("eps_n")) contact.penaltyNormal = line.number("eps_n");
   contact.friction = line.number("mu");
   if (line.given("eps_t")) contact.penaltyTangential = line.number("eps_t");
   const bool automatic = !line.given("eps_n") || (contact.friction > 0 && !line.given("eps_t"));
-  if (line.given("eps_scale") && !automatic) {
-    fail(line.value("eps_scale").where,
-         "eps_scale= scales the automatic penalty, but eps_n= and eps_t= are both given");
-  }
+  pair.refuseUnless(
+      automatic, "eps_scale",
+      "eps_scale= scales the automatic penalty, but eps_n= and eps_t= are both given");
   contact.penaltyScale = line.number("eps_scale");
   contact.enforcement = choiceValue(contactEnforcements(), line.text("enforcement"));
-  if (contact.enforcement == ContactSpec::Enforcement::Penalty) {
-    for (const char* name : {"aug_tol", "aug_max", "aug_depth", "aug_grow"}) {
-      if (line.given(name)) {
-        fail(line.value(name).where,
-             fmt::format("{}= applies to enforcement=augmented only", name));
-      }
-    }
+  const bool augmented = contact.enforcement != ContactSpec::Enforcement::Penalty;
+  for (const char* name : {"aug_tol", "aug_max", "aug_depth", "aug_grow"}) {
+    pair.refuseUnless(augmented, name,
+                      fmt::format("{}= applies to enforcement=augmented only", name));
   }
   contact.augmentationTolerance = line.number("aug_tol");
   contact.maxAugmentations = line.integer("aug_max");
   contact.accelerationDepth = line.integer("aug_depth");
   contact.growPenalty = line.flag("aug_grow");
-  if (contact.kind == ContactSpec::Kind::NodeToSegment && line.given("points")) {
-    fail(line.value("points").where,
-         "points= applies to sts and stas pairs only (nts uses the slave nodes)");
-  }
+}
+
+// How the pair's points and master surface are discretised: the options each kind takes.
+void setDiscretisation(const PairLine& pair, ContactSpec& contact) {
+  const ParsedLine& line = pair.line;
+  const bool nts = contact.kind == ContactSpec::Kind::NodeToSegment;
+  const bool stas = contact.kind == ContactSpec::Kind::SegmentToAnalytical;
+  pair.refuseUnless(!nts, "points",
+                    "points= applies to sts and stas pairs only (nts uses the slave nodes)");
   contact.integrationPoints = line.integer("points");
-  setTangentParts(line, context, contact);
+  setTangentParts(line, pair.context, contact);
   contact.masterSurface = choiceValue(masterSurfaces(), line.text("surface"));
-  if (contact.kind == ContactSpec::Kind::SegmentToAnalytical && line.given("surface") &&
-      contact.masterSurface == ContactSpec::MasterSurface::Smooth) {
-    fail(line.value("surface").where,
-         "surface=smooth applies to sts and nts pairs only (stas integrates on the "
-         "master's own segments)");
-  }
+  const bool smooth = contact.masterSurface == ContactSpec::MasterSurface::Smooth;
+  pair.refuseUnless(!(stas && smooth), "surface",
+                    "surface=smooth applies to sts and nts pairs only (stas integrates on the "
+                    "master's own segments)");
   contact.creaseDegrees = line.number("crease");
-  if (line.given("crease") && contact.masterSurface != ContactSpec::MasterSurface::Smooth) {
-    fail(line.value("crease").where,
-         "crease= applies to surface=smooth only (a faceted master keeps every edge as meshed)");
-  }
+  pair.refuseUnless(smooth, "crease",
+                    "crease= applies to surface=smooth only (a faceted master keeps every edge "
+                    "as meshed)");
   contact.masterEdge = choiceValue(masterEdges(), line.text("edge"));
-  if (contact.kind == ContactSpec::Kind::SegmentToAnalytical && line.given("edge")) {
-    fail(line.value("edge").where, "edge= applies to sts and nts pairs only");
-  }
+  pair.refuseUnless(!stas, "edge", "edge= applies to sts and nts pairs only");
   contact.integration = choiceValue(contactIntegrations(), line.text("integration"));
-  if (contact.kind != ContactSpec::Kind::SegmentToSegment && line.given("integration")) {
-    fail(line.value("integration").where,
-         "integration= applies to sts pairs only (nts uses the slave nodes, stas the master's "
-         "Gauss points against the rigid surface)");
-  }
+  pair.refuseUnless(contact.kind == ContactSpec::Kind::SegmentToSegment, "integration",
+                    "integration= applies to sts pairs only (nts uses the slave nodes, stas the "
+                    "master's Gauss points against the rigid surface)");
+}
+
+}  // namespace
+
+void handleContact(const ParsedLine& line, DeckState& state) {
+  ContactSpec contact;
+  contact.kind = choiceValue(contactKinds(), line.positional(0).text);
+  contact.name = line.given("name") ? line.text("name")
+                                    : fmt::format("pair{}", state.spec.contacts.size() + 1);
+  const PairLine pair{line, fmt::format("contact '{}'", contact.name)};
+  setPairSurfaces(pair, state, contact);
+  setEnforcement(pair, contact);
+  setDiscretisation(pair, contact);
   contact.where = line.where();
+  // The surfaces' names are checked against the mesh and the rigid surfaces after the deck.
   const std::string& kindName = line.positional(0).text;
   state.faceSetUses.push_back(
-      {contact.master, line.value("master").where, context, "master", kindName});
-  const NameUse slave{contact.slave, line.value("slave").where, context, "slave", kindName};
+      {contact.master, line.value("master").where, pair.context, "master", kindName});
+  const NameUse slave{contact.slave, line.value("slave").where, pair.context, "slave", kindName};
   if (contact.kind == ContactSpec::Kind::SegmentToAnalytical) {
     state.rigidUses.push_back(slave);
   } else {
