@@ -485,17 +485,6 @@ NewtonResult LoadStepper::augmentStep(NewtonSpec spec, const NewtonStep& step, N
   resolve.predictedIncrement = nullptr;  // the re-solve starts from the step's own solution
   resolve.referenceResidual = newton_->firstResidual();
   resolve.referenceEnergy = newton_->firstEnergy();
-  // aug_inner: an inexact re-solve, measured against its own first residual (the update's
-  // disturbance), stops at that fraction of it; its iterate only feeds the next update.
-  NewtonStep inexactResolve = resolve;
-  inexactResolve.referenceResidual = inexactResolve.referenceEnergy = 0;
-  auto resolveFrom = [&](bool inexact) {
-    if (!inexact) return newton_->solve(resolve, spec, run.displacement);
-    NewtonSpec loose = spec;  // with the line search if the step has it by now
-    loose.criterion = NewtonSpec::Criterion::Residual;
-    loose.residualTolerance = spec.augmentedInnerTolerance;
-    return newton_->solve(inexactResolve, loose, run.displacement);
-  };
   bool lastSolveInexact = false;
   for (;;) {
     const NonlinearProblem::Augmentation augmentation = problem_.augment();
@@ -508,37 +497,53 @@ NewtonResult LoadStepper::augmentStep(NewtonSpec spec, const NewtonStep& step, N
     }
     // The rule met at an inexact iterate: the step is solved to the full criterion (the
     // multipliers unchanged) and the rule checked again at that solution.
-    const bool inexact = augmentation.status == Status::Updated && spec.augmentedInnerTolerance > 0;
-    lastSolveInexact = inexact;
-    const Eigen::VectorXd start = run.displacement;
-    NewtonResult next = resolveFrom(inexact);
-    auto diverged = [&next] {
-      return next.status == NewtonResult::Status::Failed && next.failure == FailureKind::Diverged;
-    };
-    // Counts and logs the failed re-solve and puts the displacement back where it started (the
-    // multipliers stay: no restoreStep here).
-    auto retryFromStart = [&](int& retries, const char* how) {
-      ++retries;
-      summary_.discardedIterations += next.iterations;
-      observer_.note(fmt::format("step {}: retrying the augmented re-solve {}: {}", step.step, how,
-                                 next.message));
-      run.displacement = start;
-    };
-    if (lineSearchMayHelp(next) && !spec.lineSearch) {
-      retryFromStart(summary_.lineSearchRetries, "with line search");
-      spec.lineSearch = true;
-      next = resolveFrom(inexact);
-    }
-    if (diverged() && spec.penaltyContinuation &&
-        problem_.stiffestPenaltyRatio() > kContinuationRatio) {
-      retryFromStart(summary_.continuationRetries, "by penalty continuation");
-      lastSolveInexact = false;  // continuation solves to the full criterion
-      next = solveByPenaltyContinuation(spec, resolve, run);
-    }
+    lastSolveInexact = augmentation.status == Status::Updated && spec.augmentedInnerTolerance > 0;
+    NewtonResult next = resolveAugmented(spec, resolve, lastSolveInexact, run);
     next.iterations += result.iterations;
     if (next.status != NewtonResult::Status::Converged) return next;
     result = next;
   }
+}
+
+// One re-solve of augmentStep from the current displacement, with the retries a failed one gets
+// (line search, then penalty continuation), each from where the re-solve started (the
+// multipliers stay: no restoreStep). `spec` keeps the line search once a retry needed it;
+// `inexact` becomes false when continuation solved to the full criterion.
+NewtonResult LoadStepper::resolveAugmented(NewtonSpec& spec, const NewtonStep& resolve,
+                                           bool& inexact, PhaseRun& run) {
+  // aug_inner: an inexact re-solve, measured against its own first residual (the update's
+  // disturbance), stops at that fraction of it; its iterate only feeds the next update.
+  auto resolveFrom = [&](bool loose) {
+    if (!loose) return newton_->solve(resolve, spec, run.displacement);
+    NewtonStep inexactResolve = resolve;
+    inexactResolve.referenceResidual = inexactResolve.referenceEnergy = 0;
+    NewtonSpec inner = spec;  // with the line search if the step has it by now
+    inner.criterion = NewtonSpec::Criterion::Residual;
+    inner.residualTolerance = spec.augmentedInnerTolerance;
+    return newton_->solve(inexactResolve, inner, run.displacement);
+  };
+  const Eigen::VectorXd start = run.displacement;
+  NewtonResult next = resolveFrom(inexact);
+  // Counts and logs the failed re-solve and puts the displacement back where it started.
+  auto retryFromStart = [&](int& retries, const char* how) {
+    ++retries;
+    summary_.discardedIterations += next.iterations;
+    observer_.note(fmt::format("step {}: retrying the augmented re-solve {}: {}", resolve.step, how,
+                               next.message));
+    run.displacement = start;
+  };
+  if (lineSearchMayHelp(next) && !spec.lineSearch) {
+    retryFromStart(summary_.lineSearchRetries, "with line search");
+    spec.lineSearch = true;
+    next = resolveFrom(inexact);
+  }
+  if (next.status == NewtonResult::Status::Failed && next.failure == FailureKind::Diverged &&
+      spec.penaltyContinuation && problem_.stiffestPenaltyRatio() > kContinuationRatio) {
+    retryFromStart(summary_.continuationRetries, "by penalty continuation");
+    inexact = false;  // continuation solves to the full criterion
+    next = solveByPenaltyContinuation(spec, resolve, run);
+  }
+  return next;
 }
 
 bool LoadStepper::acceptStep(const PhaseSpec& phase, const NewtonResult& result, double time,

@@ -109,6 +109,9 @@ class LoadStepper {
   // Re-solves a converged step while the problem updates contact multipliers.
   NewtonResult augmentStep(NewtonSpec spec, const NewtonStep& step, NewtonResult result,
                            PhaseRun& run);
+  // One of its re-solves, with its retries (load_stepper.cpp).
+  NewtonResult resolveAugmented(NewtonSpec& spec, const NewtonStep& resolve, bool& inexact,
+                                PhaseRun& run);
   // Each returns false when the run stops (summary_ says why).
   bool runPhase(const PhaseSpec& givenPhase, double phaseStart, PhaseRun& run);
   // A restart inside the phase: the stored step size, chosen factor and stabilisation on failure.
