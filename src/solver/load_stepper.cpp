@@ -237,8 +237,7 @@ NewtonResult LoadStepper::solveStep(PhaseSpec& phase, const NewtonStep& step, do
     solvedWith.lineSearch = true;
     result = newton_->solve(retry, solvedWith, run.displacement);
   }
-  if (result.status == NewtonResult::Status::Failed && result.failure == FailureKind::Diverged &&
-      phase.newton.penaltyContinuation && problem_.stiffestPenaltyRatio() > kContinuationRatio) {
+  if (continuationMayHelp(result, phase.newton)) {
     // A stiff penalty whose step fails with and without line search fails the same way at every
     // step size (its convergence region shrinks with 1 / eps, not with dt): the step is
     // approached from the automatic penalty before it is cut back.
@@ -425,6 +424,14 @@ bool LoadStepper::rigidSurfaceTurns(double before, double now, double next) cons
   return false;
 }
 
+// Whether a failed solve is retried by penalty continuation: it diverged (an element folded by
+// an iterate is the line search's case, lineSearchMayHelp), the settings allow it, and a contact
+// penalty lies above kContinuationRatio times its automatic value.
+bool LoadStepper::continuationMayHelp(const NewtonResult& result, const NewtonSpec& spec) const {
+  return result.status == NewtonResult::Status::Failed && result.failure == FailureKind::Diverged &&
+         spec.penaltyContinuation && problem_.stiffestPenaltyRatio() > kContinuationRatio;
+}
+
 // Penalty continuation, the last retry of a step before a cut-back. Newton's region of quadratic
 // convergence shrinks like 1 / eps: a gap error of second order in a displacement correction du
 // costs eps |du|^2 / L of force, so at a penalty 1e4 times the automatic one the first iterates of
@@ -537,8 +544,7 @@ NewtonResult LoadStepper::resolveAugmented(NewtonSpec& spec, const NewtonStep& r
     spec.lineSearch = true;
     next = resolveFrom(inexact);
   }
-  if (next.status == NewtonResult::Status::Failed && next.failure == FailureKind::Diverged &&
-      spec.penaltyContinuation && problem_.stiffestPenaltyRatio() > kContinuationRatio) {
+  if (continuationMayHelp(next, spec)) {
     retryFromStart(summary_.continuationRetries, "by penalty continuation");
     inexact = false;  // continuation solves to the full criterion
     next = solveByPenaltyContinuation(spec, resolve, run);

@@ -106,6 +106,7 @@ class LoadStepper {
   // (load_stepper.cpp): the retry of a stiff penalty's failed step before it is cut back.
   NewtonResult solveByPenaltyContinuation(const NewtonSpec& spec, const NewtonStep& step,
                                           PhaseRun& run);
+  bool continuationMayHelp(const NewtonResult& result, const NewtonSpec& spec) const;
   // Re-solves a converged step while the problem updates contact multipliers.
   NewtonResult augmentStep(NewtonSpec spec, const NewtonStep& step, NewtonResult result,
                            PhaseRun& run);
